@@ -1,0 +1,178 @@
+// `tumble inspect`.
+#include "app/inspect_command.hpp"
+
+#include <cstdio>
+#include <ostream>
+#include <sstream>
+
+#include "engine/input_error.hpp"
+#include "engine/mesh_import.hpp"
+
+namespace tumble::app {
+namespace {
+
+nlohmann::json vector_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+nlohmann::json matrix_json(const Eigen::Matrix3d& m) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (int r = 0; r < 3; ++r) rows.push_back({m(r, 0), m(r, 1), m(r, 2)});
+  return rows;
+}
+
+std::string fixed(const char* format, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, format, value);
+  return buffer;
+}
+
+std::string vector_text(const Eigen::Vector3d& v) {
+  return "[" + fixed("% .9g", v.x()) + ", " + fixed("% .9g", v.y()) + ", " + fixed("% .9g", v.z()) + "]";
+}
+
+std::string with_thousands(std::size_t value) {
+  const std::string digits = std::to_string(value);
+  std::string out;
+  for (std::size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+
+}  // namespace
+
+CLI::App& add_inspect_command(CLI::App& cli, InspectOptions& options) {
+  CLI::App& inspect = *cli.add_subcommand(
+      "inspect", "Mass properties of meshes: volume, mass, centre of mass, inertia, principal axes");
+  inspect.add_option("MESH", options.files, "Mesh files (STL, OBJ, PLY, OFF, glTF, FBX, ...)")
+      ->required();
+  auto* density = inspect.add_option_function<double>(
+      "--density", [&](double value) { options.mass.density = value; },
+      "Density in kg/m^3 (default 1000, water)");
+  inspect
+      .add_option_function<double>("--mass", [&](double value) { options.mass.mass = value; },
+                                   "Total mass in kg (the density follows)")
+      ->excludes(density);
+  inspect.add_option("--scale", options.mass.scale,
+                     "File units to metres, e.g. 0.001 for millimetres (default 1)");
+  inspect.add_option_function<double>(
+      "--shell", [&](double value) { options.mass.shell_thickness = value; },
+      "Thin-shell mode: THICKNESS in metres; area-weighted, for sheets and open surfaces");
+  inspect.add_flag("--json", options.json, "Print JSON (an array when several files are given)");
+  return inspect;
+}
+
+engine::MeshReport inspect_file(const std::filesystem::path& file,
+                                const engine::MassOptions& mass) {
+  return engine::analyze_mesh(engine::import_mesh(file), mass, file.string());
+}
+
+nlohmann::json report_to_json(const engine::MeshReport& report) {
+  const engine::MassProperties& mp = report.mass_properties;
+  nlohmann::json out = {
+      {"file", report.source},
+      {"triangles", report.triangles},
+      {"input_triangles", report.input_triangles},
+      {"degenerate_triangles", report.degenerate_triangles},
+      {"vertices", report.vertices},
+      {"welded_vertices", report.welded_vertices},
+      {"parts", report.parts},
+      {"cavities", report.cavities},
+      {"watertight", report.watertight},
+      {"boundary_edges", report.boundary_edges},
+      {"inconsistent_edges", report.inconsistent_edges},
+      {"non_manifold_edges", report.non_manifold_edges},
+      {"flipped", report.flipped},
+      {"shell", report.shell},
+      {"volume", report.volume},
+      {"mass", mp.mass},
+      {"density", report.density},
+      {"center_of_mass", vector_json(mp.center_of_mass)},
+      {"inertia", matrix_json(mp.inertia)},
+      {"principal_moments", vector_json(report.principal.moments)},
+      {"principal_axes", matrix_json(report.principal.axes)},
+      {"bounds", {vector_json(report.bounds_min), vector_json(report.bounds_max)}},
+      {"warnings", report.warnings},
+  };
+  if (report.shell) {
+    out["thickness"] = report.thickness;
+    out["area"] = report.area;
+  }
+  return out;
+}
+
+std::string format_report(const engine::MeshReport& report) {
+  const engine::MassProperties& mp = report.mass_properties;
+  std::ostringstream out;
+  const auto row = [&](const std::string& label, const std::string& value) {
+    out << "  " << label << std::string(label.size() < 18 ? 18 - label.size() : 1, ' ') << value
+        << "\n";
+  };
+  out << report.source << (report.shell ? "  (thin shell)" : "") << "\n";
+  row("triangles", with_thousands(report.triangles) + " in " + std::to_string(report.parts) +
+                       (report.parts == 1 ? " part" : " parts") +
+                       (report.cavities ? ", " + std::to_string(report.cavities) + " cavities" : ""));
+  row("vertices", with_thousands(report.vertices) + " (" + with_thousands(report.welded_vertices) +
+                      " duplicates welded)");
+  row("size", vector_text(report.bounds_max - report.bounds_min) + " m");
+  if (report.shell) {
+    row("area", fixed("%.9g", report.area) + " m^2");
+    row("thickness", fixed("%.9g", report.thickness) + " m");
+  }
+  row("volume", fixed("%.9g", report.volume) + " m^3");
+  row("density", fixed("%.9g", report.density) + " kg/m^3");
+  row("mass", fixed("%.9g", mp.mass) + " kg");
+  row("centre of mass", vector_text(mp.center_of_mass) + " m");
+  out << "  inertia about the centre of mass, file axes (kg m^2)\n";
+  for (int r = 0; r < 3; ++r) out << "                    " << vector_text(mp.inertia.row(r)) << "\n";
+  row("principal moments", vector_text(report.principal.moments) + " kg m^2 (I1 <= I2 <= I3)");
+  out << "  principal axes (columns; a rotation from principal to file axes)\n";
+  for (int r = 0; r < 3; ++r) {
+    out << "                    " << vector_text(report.principal.axes.row(r)) << "\n";
+  }
+  out << "  checks\n";
+  const auto check = [&](bool ok, const std::string& text) {
+    out << "    " << (ok ? "ok    " : "warn  ") << text << "\n";
+  };
+  if (!report.shell) {
+    check(true, "closed surface (0 boundary edges)");
+    check(true, "consistent winding");
+    check(!report.flipped, report.flipped ? "faces pointed inward: flipped" : "faces point outward");
+  } else {
+    check(true, "thin shell: closure and winding not required (" +
+                    with_thousands(report.boundary_edges) + " boundary edges)");
+  }
+  check(report.degenerate_triangles == 0,
+        with_thousands(report.degenerate_triangles) + " degenerate triangles skipped");
+  check(true, "principal moments positive and satisfy the triangle inequality");
+  for (const std::string& warning : report.warnings) out << "    note  " << warning << "\n";
+  return out.str();
+}
+
+int run_inspect(const InspectOptions& options, std::ostream& out, std::ostream& err) {
+  std::vector<engine::MeshReport> reports;
+  int status = 0;
+  for (const std::filesystem::path& file : options.files) {
+    try {
+      reports.push_back(inspect_file(file, options.mass));
+    } catch (const engine::InputError& error) {
+      err << "tumble inspect: error: " << error.what() << "\n";
+      status = 1;
+    }
+  }
+  if (options.json) {
+    if (status != 0) return status;
+    if (reports.size() == 1) {
+      out << report_to_json(reports.front()).dump(2) << "\n";
+    } else {
+      nlohmann::json array = nlohmann::json::array();
+      for (const auto& report : reports) array.push_back(report_to_json(report));
+      out << array.dump(2) << "\n";
+    }
+    return 0;
+  }
+  for (std::size_t i = 0; i < reports.size(); ++i) out << (i ? "\n" : "") << format_report(reports[i]);
+  return status;
+}
+
+}  // namespace tumble::app

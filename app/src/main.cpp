@@ -1,0 +1,34 @@
+// The `tumble` command line: one executable, one subcommand per job.
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "app/inspect_command.hpp"
+#include "engine/input_error.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App cli{"tumble: rigid bodies with mass properties from real meshes: inspect, simulate, "
+               "render"};
+  cli.require_subcommand(1);
+  cli.set_version_flag("--version", "tumble 0.1.0");
+
+  tumble::app::InspectOptions inspect_options;
+  CLI::App& inspect = tumble::app::add_inspect_command(cli, inspect_options);
+
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    return cli.exit(error);
+  }
+
+  try {
+    if (inspect.parsed()) return tumble::app::run_inspect(inspect_options, std::cout, std::cerr);
+  } catch (const tumble::engine::InputError& error) {
+    std::cerr << "tumble: error: " << error.what() << "\n";
+    return 1;
+  } catch (const std::exception& error) {
+    std::cerr << "tumble: internal error: " << error.what() << "\n";
+    return 70;
+  }
+  return 0;
+}

@@ -1,0 +1,42 @@
+#pragma once
+/// @file Welding and edge topology of triangle soups: what makes a mesh a closed solid.
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "engine/triangle_mesh.hpp"
+
+namespace tumble::engine {
+
+/// Merges vertices whose positions are bit-identical (with -0 equal to +0), keeping the
+/// vertices in order of first use, and rewrites the triangles. Returns how many vertices were
+/// merged away. A hash and a radix sort, linear in the vertex count (no assimp post-process).
+std::size_t weld_by_position(TriangleMesh& mesh);
+
+/// Removes triangles that use a vertex twice (after welding, the only exact degeneracy that
+/// breaks the edge topology; zero-area triangles with three distinct vertices stay, they add
+/// nothing to the integrals). Returns how many were removed.
+std::size_t remove_degenerate_triangles(TriangleMesh& mesh);
+
+/// How the triangles share their edges, and into how many connected parts they fall.
+struct Topology {
+  /// Edges used by exactly one triangle: the surface is open there.
+  std::size_t boundary_edges = 0;
+  /// Edges used more often in one direction than in the other by two or more triangles
+  /// (two neighbours that disagree on the winding).
+  std::size_t inconsistent_edges = 0;
+  /// Balanced edges shared by more than two triangles (closed but not a 2-manifold).
+  std::size_t non_manifold_edges = 0;
+  /// Connected parts (triangles joined through shared vertices).
+  std::size_t parts = 0;
+  /// Part of each triangle, numbered 0..parts-1 in order of each part's first triangle.
+  std::vector<std::uint32_t> triangle_part;
+
+  bool closed() const { return boundary_edges == 0 && inconsistent_edges == 0; }
+};
+
+/// Edge use and connected parts of a welded mesh without repeated-vertex triangles.
+Topology analyze_topology(const TriangleMesh& mesh);
+
+}  // namespace tumble::engine

@@ -1,0 +1,268 @@
+// From a raw triangle soup to checked mass properties.
+//
+// Order matters: scale, reject non-finite numbers, weld (STL and OBJ arrive as soups, and
+// normals/UV seams split vertices), drop repeated-vertex triangles, then judge the edge
+// topology on the welded mesh. Orientation is judged per connected part from signed volumes:
+// all parts inside out means the whole file is inverted (flip, warn); an inside-out part that
+// lies inside another part is a cavity; one that lies inside nothing is flipped with a warning.
+#include "engine/mesh_analysis.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "engine/input_error.hpp"
+#include "engine/mesh_topology.hpp"
+
+namespace tumble::engine {
+namespace {
+
+std::string format_number(double value) {
+  std::ostringstream out;
+  out.precision(6);
+  out << value;
+  return out.str();
+}
+
+std::string plural(std::size_t count, const std::string& noun) {
+  return std::to_string(count) + " " + noun + (count == 1 ? "" : "s");
+}
+
+[[noreturn]] void fail(const std::string& source, const std::string& problem) {
+  throw InputError(source + ": " + problem);
+}
+
+void check_options(const MassOptions& options, const std::string& source) {
+  const auto positive = [&](const char* name, double value) {
+    if (!std::isfinite(value) || value <= 0.0) {
+      fail(source, std::string(name) + " must be a positive finite number, got " +
+                       format_number(value));
+    }
+  };
+  if (options.density && options.mass) fail(source, "give either a density or a mass, not both");
+  if (options.density) positive("density", *options.density);
+  if (options.mass) positive("mass", *options.mass);
+  if (options.shell_thickness) positive("shell thickness", *options.shell_thickness);
+  positive("scale", options.scale);
+}
+
+/// Solid angle of triangle (a, b, c) seen from the origin (Van Oosterom and Strackee, IEEE
+/// Trans. Biomed. Eng. 30 (1983)): tan(omega/2) = a.(b x c) / (|a||b||c| + (a.b)|c| + ...).
+double solid_angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  const double la = a.norm(), lb = b.norm(), lc = c.norm();
+  const double numerator = a.dot(b.cross(c));
+  const double denominator = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
+  return 2.0 * std::atan2(numerator, denominator);
+}
+
+/// Per-part signed volumes, bounding boxes and a sample vertex, in one pass.
+struct PartSummary {
+  double signed_volume = 0.0;  // times 6
+  double absolute_volume = 0.0;  // sum of |det|, the scale of rounding in signed_volume
+  Eigen::Vector3d low = Eigen::Vector3d::Constant(INFINITY);
+  Eigen::Vector3d high = Eigen::Vector3d::Constant(-INFINITY);
+  std::uint32_t sample_vertex = 0;
+  bool reversed = false;
+  bool cavity = false;
+};
+
+std::vector<PartSummary> summarize_parts(const TriangleMesh& mesh, const Topology& topology,
+                                         const Eigen::Vector3d& reference) {
+  std::vector<PartSummary> parts(topology.parts);
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+    const auto& t = mesh.triangles[i];
+    PartSummary& part = parts[topology.triangle_part[i]];
+    const Eigen::Vector3d a = mesh.positions[t[0]] - reference;
+    const Eigen::Vector3d b = mesh.positions[t[1]] - reference;
+    const Eigen::Vector3d c = mesh.positions[t[2]] - reference;
+    const double det = a.dot(b.cross(c));
+    part.signed_volume += det;
+    part.absolute_volume += std::abs(det);
+    if (parts.size() > 1) {
+      part.sample_vertex = t[0];
+      for (const std::uint32_t v : t) {
+        part.low = part.low.cwiseMin(mesh.positions[v]);
+        part.high = part.high.cwiseMax(mesh.positions[v]);
+      }
+    }
+  }
+  return parts;
+}
+
+/// Winding number of part `outer` (as currently oriented) around `point`: 1 inside, 0 outside.
+double winding_number(const TriangleMesh& mesh, const Topology& topology, std::uint32_t outer,
+                      bool outer_reversed, const Eigen::Vector3d& point) {
+  double total = 0.0;
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+    if (topology.triangle_part[i] != outer) continue;
+    const auto& t = mesh.triangles[i];
+    total += solid_angle(mesh.positions[t[0]] - point, mesh.positions[t[1]] - point,
+                         mesh.positions[t[2]] - point);
+  }
+  const double winding = total / (4.0 * std::numbers::pi);
+  return outer_reversed ? -winding : winding;
+}
+
+bool box_inside(const PartSummary& inner, const PartSummary& outer) {
+  return (inner.low.array() >= outer.low.array()).all() &&
+         (inner.high.array() <= outer.high.array()).all();
+}
+
+/// Decides which parts to reverse and which are cavities. A negative total means the whole
+/// file is inside out (a common export error): everything is reversed first.
+void orient_parts(std::vector<PartSummary>& parts, double signed_total, const TriangleMesh& mesh,
+                  const Topology& topology, MeshReport& report) {
+  if (signed_total < 0.0) {
+    for (PartSummary& part : parts) part.reversed = true;
+    report.flipped = true;
+    report.warnings.push_back("the faces point inward (negative volume): flipped them all");
+  }
+  if (parts.size() < 2) return;
+
+  // Test each part against every part whose bounding box contains it.
+  for (std::uint32_t inner = 0; inner < parts.size(); ++inner) {
+    const bool inner_negative = (parts[inner].signed_volume < 0.0) != parts[inner].reversed;
+    const Eigen::Vector3d& point = mesh.positions[parts[inner].sample_vertex];
+    std::optional<std::uint32_t> container;
+    for (std::uint32_t outer = 0; outer < parts.size() && !container; ++outer) {
+      if (outer == inner || !box_inside(parts[inner], parts[outer])) continue;
+      const bool outer_negative = (parts[outer].signed_volume < 0.0) != parts[outer].reversed;
+      if (outer_negative) continue;
+      const double winding = winding_number(mesh, topology, outer, parts[outer].reversed, point);
+      if (winding > 0.5) container = outer;
+    }
+    if (inner_negative && container) {
+      parts[inner].cavity = true;
+      ++report.cavities;
+    } else if (inner_negative) {
+      parts[inner].reversed = !parts[inner].reversed;
+      report.warnings.push_back("part " + std::to_string(inner + 1) + " of " +
+                                std::to_string(parts.size()) +
+                                " points inward but lies inside no other part: flipped it");
+    } else if (container) {
+      report.warnings.push_back(
+          "part " + std::to_string(inner + 1) + " lies inside part " +
+          std::to_string(*container + 1) +
+          " with the same orientation, so their shared volume counts twice (reverse its winding "
+          "if it is meant as a cavity)");
+    }
+  }
+}
+
+void flip_reversed_parts(TriangleMesh& mesh, const Topology& topology,
+                         const std::vector<PartSummary>& parts) {
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+    if (parts[topology.triangle_part[i]].reversed) std::swap(mesh.triangles[i][1], mesh.triangles[i][2]);
+  }
+}
+
+}  // namespace
+
+MeshReport analyze_mesh(TriangleMesh mesh, const MassOptions& options, const std::string& source) {
+  check_options(options, source);
+  MeshReport report;
+  report.source = source;
+  report.input_triangles = mesh.triangles.size();
+  report.shell = options.shell_thickness.has_value();
+  if (mesh.triangles.empty()) fail(source, "contains no triangles");
+
+  // Scale to metres and reject non-finite coordinates (also those that overflow on scaling).
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    Eigen::Vector3d& p = mesh.positions[i];
+    if (options.scale != 1.0) p *= options.scale;
+    if (!p.allFinite()) {
+      fail(source, "vertex " + std::to_string(i + 1) + " has a non-finite coordinate");
+    }
+  }
+
+  // Weld, then drop triangles that use a vertex twice.
+  report.welded_vertices = weld_by_position(mesh);
+  report.degenerate_triangles = remove_degenerate_triangles(mesh);
+  report.vertices = mesh.positions.size();
+  report.triangles = mesh.triangles.size();
+  if (mesh.triangles.empty()) {
+    fail(source, "all " + plural(report.input_triangles, "triangle") + " are degenerate");
+  }
+  if (report.degenerate_triangles > 0) {
+    report.warnings.push_back("skipped " + plural(report.degenerate_triangles, "degenerate triangle"));
+  }
+
+  // Bounding box; its centre is the reference point of all integrals.
+  report.bounds_min = report.bounds_max = mesh.positions.front();
+  for (const Eigen::Vector3d& p : mesh.positions) {
+    report.bounds_min = report.bounds_min.cwiseMin(p);
+    report.bounds_max = report.bounds_max.cwiseMax(p);
+  }
+  const Eigen::Vector3d reference = 0.5 * (report.bounds_min + report.bounds_max);
+
+  // Edge topology and connected parts.
+  const Topology topology = analyze_topology(mesh);
+  report.parts = topology.parts;
+  report.boundary_edges = topology.boundary_edges;
+  report.inconsistent_edges = topology.inconsistent_edges;
+  report.non_manifold_edges = topology.non_manifold_edges;
+  report.watertight = topology.closed();
+  if (topology.non_manifold_edges > 0) {
+    report.warnings.push_back(plural(topology.non_manifold_edges, "edge") +
+                              " shared by more than two triangles (closed, but not a manifold)");
+  }
+
+  MomentIntegrals integrals;
+  double density = 0.0;
+  if (report.shell) {
+    // Thin shell: area-weighted, orientation and closure do not matter.
+    report.thickness = *options.shell_thickness;
+    integrals = surface_integrals(mesh, reference);
+    report.area = integrals.measure;
+    report.volume = report.area * report.thickness;
+    if (!(report.area > 0.0)) fail(source, "has zero surface area");
+    density = options.mass ? *options.mass / report.volume : options.density.value_or(1000.0);
+    // Surface density rho * t turns area integrals into mass integrals.
+    report.mass_properties = mass_properties(integrals, reference, density * report.thickness);
+  } else {
+    if (topology.boundary_edges > 0) {
+      fail(source, "the surface is open (" + plural(topology.boundary_edges, "boundary edge") +
+                       "), so it encloses no volume; for a thin sheet or open surface use "
+                       "--shell THICKNESS");
+    }
+    if (topology.inconsistent_edges > 0) {
+      fail(source, "inconsistent winding: " + plural(topology.inconsistent_edges, "edge") +
+                       " used twice in the same direction (neighbouring faces disagree on "
+                       "inside and outside)");
+    }
+    std::vector<PartSummary> parts = summarize_parts(mesh, topology, reference);
+    double signed_total = 0.0, absolute_total = 0.0;
+    for (const PartSummary& part : parts) {
+      signed_total += part.signed_volume;
+      absolute_total += part.absolute_volume;
+    }
+    // Zero volume relative to the rounding scale of the signed sum (scale-free).
+    if (!(std::abs(signed_total) > 1e-9 * absolute_total)) {
+      fail(source, "encloses zero volume (a flat or collapsed surface); for a thin sheet use "
+                   "--shell THICKNESS");
+    }
+    orient_parts(parts, signed_total, mesh, topology, report);
+    if (std::any_of(parts.begin(), parts.end(), [](const PartSummary& p) { return p.reversed; })) {
+      flip_reversed_parts(mesh, topology, parts);
+    }
+    integrals = solid_integrals(mesh, reference);
+    report.volume = integrals.measure;
+    if (!(report.volume > 0.0)) {
+      fail(source, "encloses a non-positive volume (" + format_number(report.volume) +
+                       " m^3) once cavities are taken out");
+    }
+    density = options.mass ? *options.mass / report.volume : options.density.value_or(1000.0);
+    report.mass_properties = mass_properties(integrals, reference, density);
+  }
+  report.density = density;
+
+  // Principal frame, and the checks any rigid body must pass.
+  report.principal = principal_frame(report.mass_properties.inertia);
+  if (const auto problem = principal_moments_problem(report.principal.moments)) {
+    fail(source, *problem);
+  }
+  return report;
+}
+
+}  // namespace tumble::engine

@@ -1,0 +1,108 @@
+// Mesh import through assimp.
+//
+// Post-processing is kept to triangulation and dropping points and lines: no
+// aiProcess_JoinIdenticalVertices (slow, and it compares normals: the engine welds by position
+// itself) and no aiProcess_FindDegenerates (its area threshold is absolute and deletes whole
+// small meshes). Node transforms are applied by walking the node tree in double precision.
+#include "engine/mesh_import.hpp"
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <fstream>
+#include <system_error>
+
+#include "engine/input_error.hpp"
+
+namespace tumble::engine {
+namespace {
+
+[[noreturn]] void fail(const std::filesystem::path& file, const std::string& problem) {
+  throw InputError(file.string() + ": " + problem);
+}
+
+/// One line of assimp's error text.
+std::string single_line(std::string text) {
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  while (!text.empty() && (text.back() == ' ' || text.back() == '\r')) text.pop_back();
+  return text;
+}
+
+Eigen::Matrix4d to_eigen(const aiMatrix4x4& m) {
+  Eigen::Matrix4d out;
+  out << m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4, m.c1, m.c2, m.c3, m.c4, m.d1, m.d2, m.d3,
+      m.d4;
+  return out;
+}
+
+/// Appends the triangles of every mesh below `node`, transformed into the file's root frame.
+void collect(const aiScene& scene, const aiNode& node, const Eigen::Matrix4d& parent,
+             TriangleMesh& out) {
+  const Eigen::Matrix4d transform = parent * to_eigen(node.mTransformation);
+  const Eigen::Matrix3d linear = transform.topLeftCorner<3, 3>();
+  const Eigen::Vector3d translation = transform.topRightCorner<3, 1>();
+  // A mirroring transform turns outward normals inward: reverse the winding to compensate.
+  const bool mirrored = linear.determinant() < 0.0;
+
+  for (unsigned m = 0; m < node.mNumMeshes; ++m) {
+    const aiMesh& mesh = *scene.mMeshes[node.mMeshes[m]];
+    if (!(mesh.mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
+    const auto base = static_cast<std::uint32_t>(out.positions.size());
+    for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+      const aiVector3D& p = mesh.mVertices[v];
+      out.positions.push_back(linear * Eigen::Vector3d(p.x, p.y, p.z) + translation);
+    }
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+      const aiFace& face = mesh.mFaces[f];
+      if (face.mNumIndices != 3) continue;
+      const std::uint32_t a = base + face.mIndices[0];
+      const std::uint32_t b = base + face.mIndices[1];
+      const std::uint32_t c = base + face.mIndices[2];
+      out.triangles.push_back(mirrored ? std::array{a, c, b} : std::array{a, b, c});
+    }
+  }
+  for (unsigned child = 0; child < node.mNumChildren; ++child) {
+    collect(scene, *node.mChildren[child], transform, out);
+  }
+}
+
+}  // namespace
+
+TriangleMesh import_mesh(const std::filesystem::path& file) {
+  // Say plainly what is wrong with the path before assimp does it vaguely.
+  std::error_code error;
+  const auto status = std::filesystem::status(file, error);
+  if (!std::filesystem::exists(status)) fail(file, "no such file");
+  if (std::filesystem::is_directory(status)) fail(file, "is a directory, not a mesh file");
+  if (!std::ifstream(file, std::ios::binary)) fail(file, "cannot be opened for reading");
+  if (std::filesystem::file_size(file, error) == 0 && !error) fail(file, "is empty");
+
+  Assimp::Importer importer;
+  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  const aiScene* scene =
+      importer.ReadFile(file.string(), aiProcess_Triangulate | aiProcess_SortByPType);
+  if (scene == nullptr) {
+    const std::string reason = single_line(importer.GetErrorString());
+    if (reason.find("No suitable reader") != std::string::npos) {
+      fail(file, "unknown or unsupported mesh format");
+    }
+    fail(file, "cannot be read as a mesh (assimp: " + reason + ")");
+  }
+  if (scene->mRootNode == nullptr || scene->mNumMeshes == 0) fail(file, "contains no triangles");
+
+  TriangleMesh mesh;
+  collect(*scene, *scene->mRootNode, Eigen::Matrix4d::Identity(), mesh);
+  if (mesh.triangles.empty()) fail(file, "contains no triangles");
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    if (!mesh.positions[i].allFinite()) {
+      fail(file, "vertex " + std::to_string(i + 1) + " has a non-finite coordinate");
+    }
+  }
+  return mesh;
+}
+
+}  // namespace tumble::engine

@@ -1,0 +1,214 @@
+// Welding and edge topology.
+//
+// Both run on meshes of millions of triangles inside `tumble inspect`, whose budget is the time
+// assimp takes to read the file, so neither uses node-based hash maps:
+// - welding hashes each position to 32 bits, radix-sorts (hash, index) pairs (stable, so each
+//   run of equal hashes stays in index order) and compares positions exactly inside each run;
+// - edge use is counted by bucketing each undirected edge under its smaller vertex (a CSR
+//   layout), sorting the few edges of each bucket and comparing directions.
+#include "engine/mesh_topology.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cstring>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+
+namespace tumble::engine {
+namespace {
+
+/// Bits of a coordinate with -0 folded onto +0, so that equal values hash equally.
+std::uint64_t coordinate_bits(double value) {
+  return std::bit_cast<std::uint64_t>(value == 0.0 ? 0.0 : value);
+}
+
+/// A 32-bit hash of a position (a multiply-xorshift mix of the three coordinates' bits).
+std::uint32_t position_hash(const Eigen::Vector3d& p) {
+  std::uint64_t h = 0x9e3779b97f4a7c15ull;
+  for (int axis = 0; axis < 3; ++axis) {
+    h ^= coordinate_bits(p[axis]);
+    h *= 0xbf58476d1ce4e5b9ull;
+    h ^= h >> 31;
+  }
+  h *= 0x94d049bb133111ebull;
+  return static_cast<std::uint32_t>(h >> 32);
+}
+
+bool same_position(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return a.x() == b.x() && a.y() == b.y() && a.z() == b.z();
+}
+
+struct KeyedIndex {
+  std::uint32_t key;
+  std::uint32_t index;
+};
+
+/// Stable LSD radix sort on 32-bit keys, 11 bits a pass.
+void radix_sort(std::vector<KeyedIndex>& items) {
+  constexpr int kBits = 11;
+  constexpr std::uint32_t kBuckets = 1u << kBits;
+  std::vector<KeyedIndex> scratch(items.size());
+  std::vector<std::size_t> offsets(kBuckets);
+  for (int shift = 0; shift < 32; shift += kBits) {
+    std::fill(offsets.begin(), offsets.end(), 0);
+    for (const KeyedIndex& item : items) ++offsets[(item.key >> shift) & (kBuckets - 1)];
+    std::exclusive_scan(offsets.begin(), offsets.end(), offsets.begin(), std::size_t{0});
+    for (const KeyedIndex& item : items) scratch[offsets[(item.key >> shift) & (kBuckets - 1)]++] = item;
+    items.swap(scratch);
+  }
+}
+
+/// Disjoint-set forest with path halving, for connected parts.
+class DisjointSets {
+ public:
+  explicit DisjointSets(std::size_t size) : parent_(size) {
+    std::iota(parent_.begin(), parent_.end(), std::uint32_t{0});
+  }
+  std::uint32_t find(std::uint32_t x) {
+    while (parent_[x] != x) {
+      parent_[x] = parent_[parent_[x]];
+      x = parent_[x];
+    }
+    return x;
+  }
+  void unite(std::uint32_t a, std::uint32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+  }
+
+ private:
+  std::vector<std::uint32_t> parent_;
+};
+
+}  // namespace
+
+std::size_t weld_by_position(TriangleMesh& mesh) {
+  const std::size_t count = mesh.positions.size();
+  if (count >= std::numeric_limits<std::uint32_t>::max()) {
+    throw std::length_error("weld_by_position: more than 2^32 - 1 vertices");
+  }
+
+  // Sort vertex indices by the hash of their position.
+  std::vector<KeyedIndex> order(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    order[i] = {position_hash(mesh.positions[i]), static_cast<std::uint32_t>(i)};
+  }
+  radix_sort(order);
+
+  // In each run of equal hashes, point every vertex at the first (lowest) index at its position.
+  std::vector<std::uint32_t> representative(count);
+  for (std::size_t begin = 0; begin < count;) {
+    std::size_t end = begin + 1;
+    while (end < count && order[end].key == order[begin].key) ++end;
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::uint32_t vertex = order[i].index;
+      representative[vertex] = vertex;
+      for (std::size_t j = begin; j < i; ++j) {
+        const std::uint32_t earlier = order[j].index;
+        if (representative[earlier] == earlier &&
+            same_position(mesh.positions[earlier], mesh.positions[vertex])) {
+          representative[vertex] = earlier;
+          break;
+        }
+      }
+    }
+    begin = end;
+  }
+
+  // Number the surviving vertices in their original order and compact the positions.
+  std::vector<std::uint32_t> new_index(count);
+  std::uint32_t kept = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (representative[i] == i) {
+      new_index[i] = kept;
+      mesh.positions[kept++] = mesh.positions[i];
+    } else {
+      new_index[i] = new_index[representative[i]];
+    }
+  }
+  mesh.positions.resize(kept);
+  for (auto& triangle : mesh.triangles) {
+    for (std::uint32_t& v : triangle) v = new_index[v];
+  }
+  return count - kept;
+}
+
+std::size_t remove_degenerate_triangles(TriangleMesh& mesh) {
+  const auto degenerate = [](const std::array<std::uint32_t, 3>& t) {
+    return t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
+  };
+  const auto removed = std::remove_if(mesh.triangles.begin(), mesh.triangles.end(), degenerate);
+  const auto count = static_cast<std::size_t>(mesh.triangles.end() - removed);
+  mesh.triangles.erase(removed, mesh.triangles.end());
+  return count;
+}
+
+Topology analyze_topology(const TriangleMesh& mesh) {
+  const std::size_t vertex_count = mesh.positions.size();
+  if (vertex_count >= (std::size_t{1} << 31)) {
+    throw std::length_error("analyze_topology: more than 2^31 vertices");
+  }
+  Topology topology;
+
+  // Bucket each edge under its smaller vertex: the entry is (larger vertex << 1 | reversed).
+  std::vector<std::size_t> bucket_start(vertex_count + 1, 0);
+  for (const auto& t : mesh.triangles) {
+    for (int corner = 0; corner < 3; ++corner) {
+      ++bucket_start[std::min(t[corner], t[(corner + 1) % 3]) + 1];
+    }
+  }
+  std::partial_sum(bucket_start.begin(), bucket_start.end(), bucket_start.begin());
+  std::vector<std::uint32_t> edges(bucket_start.back());
+  {
+    std::vector<std::size_t> fill(bucket_start.begin(), bucket_start.end() - 1);
+    for (const auto& t : mesh.triangles) {
+      for (int corner = 0; corner < 3; ++corner) {
+        const std::uint32_t from = t[corner];
+        const std::uint32_t to = t[(corner + 1) % 3];
+        const std::uint32_t low = std::min(from, to);
+        const std::uint32_t high = std::max(from, to);
+        edges[fill[low]++] = (high << 1) | (from > to ? 1u : 0u);
+      }
+    }
+  }
+
+  // In each bucket, count each edge's uses in both directions.
+  for (std::size_t v = 0; v < vertex_count; ++v) {
+    const auto begin = edges.begin() + static_cast<std::ptrdiff_t>(bucket_start[v]);
+    const auto end = edges.begin() + static_cast<std::ptrdiff_t>(bucket_start[v + 1]);
+    std::sort(begin, end);
+    for (auto run = begin; run != end;) {
+      const std::uint32_t other = *run >> 1;
+      std::size_t forward = 0;
+      std::size_t backward = 0;
+      for (; run != end && (*run >> 1) == other; ++run) ((*run & 1u) ? backward : forward)++;
+      if (forward + backward == 1) {
+        ++topology.boundary_edges;
+      } else if (forward != backward) {
+        ++topology.inconsistent_edges;
+      } else if (forward + backward > 2) {
+        ++topology.non_manifold_edges;
+      }
+    }
+  }
+
+  // Connected parts through shared vertices, numbered in order of first triangle.
+  DisjointSets sets(vertex_count);
+  for (const auto& t : mesh.triangles) {
+    sets.unite(t[0], t[1]);
+    sets.unite(t[1], t[2]);
+  }
+  constexpr std::uint32_t kUnassigned = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> part_of_root(vertex_count, kUnassigned);
+  topology.triangle_part.resize(mesh.triangles.size());
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+    std::uint32_t& part = part_of_root[sets.find(mesh.triangles[i][0])];
+    if (part == kUnassigned) part = static_cast<std::uint32_t>(topology.parts++);
+    topology.triangle_part[i] = part;
+  }
+  return topology;
+}
+
+}  // namespace tumble::engine

@@ -1,0 +1,55 @@
+#pragma once
+// Runs a shell command and captures its exit status, stdout and stderr (for end-to-end tests of
+// the `tumble` executable).
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace tumble::testing {
+
+struct CommandResult {
+  int status = -1;
+  std::string out;
+  std::string err;
+};
+
+inline std::string read_text(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// A fresh, empty directory under the system's temporary directory, unique per test.
+inline std::filesystem::path fresh_directory(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("tumble_test_" + name + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+/// Runs `command` through the shell with stdout and stderr captured to files.
+inline CommandResult run_command(const std::string& command) {
+  const auto dir = fresh_directory("cmd");
+  const auto out = dir / "out.txt";
+  const auto err = dir / "err.txt";
+  const std::string full = command + " >'" + out.string() + "' 2>'" + err.string() + "' </dev/null";
+  const int raw = std::system(full.c_str());
+  CommandResult result;
+  result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  result.out = read_text(out);
+  result.err = read_text(err);
+  std::filesystem::remove_all(dir);
+  return result;
+}
+
+/// The `tumble` executable of this build.
+inline std::string tumble_executable() { return std::string(TUMBLE_BINARY_DIR) + "/app/tumble"; }
+
+}  // namespace tumble::testing
