@@ -5,6 +5,8 @@
 #include <ostream>
 #include <sstream>
 
+#include <CLI/CLI.hpp>
+
 #include "engine/input_error.hpp"
 #include "engine/mesh_import.hpp"
 
@@ -64,7 +66,11 @@ CLI::App& add_inspect_command(CLI::App& cli, InspectOptions& options) {
 
 engine::MeshReport inspect_file(const std::filesystem::path& file,
                                 const engine::MassOptions& mass) {
-  return engine::analyze_mesh(engine::import_mesh(file), mass, file.string());
+  std::size_t welded_on_import = 0;
+  engine::MeshReport report =
+      engine::analyze_mesh(engine::import_mesh(file, &welded_on_import), mass, file.string());
+  report.welded_vertices += welded_on_import;
+  return report;
 }
 
 nlohmann::json report_to_json(const engine::MeshReport& report) {

@@ -17,6 +17,7 @@
 #include <system_error>
 
 #include "engine/input_error.hpp"
+#include "engine/vertex_welding.hpp"
 
 namespace tumble::engine {
 namespace {
@@ -41,38 +42,49 @@ Eigen::Matrix4d to_eigen(const aiMatrix4x4& m) {
 
 /// Appends the triangles of every mesh below `node`, transformed into the file's root frame.
 void collect(const aiScene& scene, const aiNode& node, const Eigen::Matrix4d& parent,
-             TriangleMesh& out) {
+             TriangleMesh& out, std::size_t& welded_vertices) {
   const Eigen::Matrix4d transform = parent * to_eigen(node.mTransformation);
   const Eigen::Matrix3d linear = transform.topLeftCorner<3, 3>();
   const Eigen::Vector3d translation = transform.topRightCorner<3, 1>();
   // A mirroring transform turns outward normals inward: reverse the winding to compensate.
   const bool mirrored = linear.determinant() < 0.0;
+  const bool identity = transform.isIdentity(0.0);
 
   for (unsigned m = 0; m < node.mNumMeshes; ++m) {
     const aiMesh& mesh = *scene.mMeshes[node.mMeshes[m]];
     if (!(mesh.mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
-    const auto base = static_cast<std::uint32_t>(out.positions.size());
-    for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+    // Weld on assimp's own coordinates first: an STL soup shrinks about sixfold before it is
+    // widened to doubles and transformed.
+    const WeldMap weld = weld_positions<ai_real>(mesh.mNumVertices, [&](std::size_t v) {
       const aiVector3D& p = mesh.mVertices[v];
-      out.positions.push_back(linear * Eigen::Vector3d(p.x, p.y, p.z) + translation);
+      return std::array<ai_real, 3>{p.x, p.y, p.z};
+    });
+    welded_vertices += mesh.mNumVertices - weld.kept.size();
+    const auto base = static_cast<std::uint32_t>(out.positions.size());
+    out.positions.reserve(out.positions.size() + weld.kept.size());
+    out.triangles.reserve(out.triangles.size() + mesh.mNumFaces);
+    for (const std::uint32_t v : weld.kept) {
+      const aiVector3D& p = mesh.mVertices[v];
+      const Eigen::Vector3d position(p.x, p.y, p.z);
+      out.positions.push_back(identity ? position : Eigen::Vector3d(linear * position + translation));
     }
     for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
       const aiFace& face = mesh.mFaces[f];
       if (face.mNumIndices != 3) continue;
-      const std::uint32_t a = base + face.mIndices[0];
-      const std::uint32_t b = base + face.mIndices[1];
-      const std::uint32_t c = base + face.mIndices[2];
+      const std::uint32_t a = base + weld.new_index[face.mIndices[0]];
+      const std::uint32_t b = base + weld.new_index[face.mIndices[1]];
+      const std::uint32_t c = base + weld.new_index[face.mIndices[2]];
       out.triangles.push_back(mirrored ? std::array{a, c, b} : std::array{a, b, c});
     }
   }
   for (unsigned child = 0; child < node.mNumChildren; ++child) {
-    collect(scene, *node.mChildren[child], transform, out);
+    collect(scene, *node.mChildren[child], transform, out, welded_vertices);
   }
 }
 
 }  // namespace
 
-TriangleMesh import_mesh(const std::filesystem::path& file) {
+TriangleMesh import_mesh(const std::filesystem::path& file, std::size_t* welded_vertices) {
   // Say plainly what is wrong with the path before assimp does it vaguely.
   std::error_code error;
   const auto status = std::filesystem::status(file, error);
@@ -83,8 +95,17 @@ TriangleMesh import_mesh(const std::filesystem::path& file) {
 
   Assimp::Importer importer;
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  const aiScene* scene =
-      importer.ReadFile(file.string(), aiProcess_Triangulate | aiProcess_SortByPType);
+  const aiScene* scene = importer.ReadFile(file.string(), 0);
+  // Triangulate and drop points and lines only when the file has any (STL never does).
+  const auto has_non_triangles = [](const aiScene& s) {
+    for (unsigned m = 0; m < s.mNumMeshes; ++m) {
+      if (s.mMeshes[m]->mPrimitiveTypes & ~aiPrimitiveType_TRIANGLE) return true;
+    }
+    return false;
+  };
+  if (scene != nullptr && has_non_triangles(*scene)) {
+    scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_SortByPType);
+  }
   if (scene == nullptr) {
     const std::string reason = single_line(importer.GetErrorString());
     if (reason.find("No suitable reader") != std::string::npos) {
@@ -95,7 +116,9 @@ TriangleMesh import_mesh(const std::filesystem::path& file) {
   if (scene->mRootNode == nullptr || scene->mNumMeshes == 0) fail(file, "contains no triangles");
 
   TriangleMesh mesh;
-  collect(*scene, *scene->mRootNode, Eigen::Matrix4d::Identity(), mesh);
+  std::size_t welded = 0;
+  collect(*scene, *scene->mRootNode, Eigen::Matrix4d::Identity(), mesh, welded);
+  if (welded_vertices != nullptr) *welded_vertices = welded;
   if (mesh.triangles.empty()) fail(file, "contains no triangles");
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
     if (!mesh.positions[i].allFinite()) {

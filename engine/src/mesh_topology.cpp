@@ -2,11 +2,12 @@
 //
 // Both run on meshes of millions of triangles inside `tumble inspect`, whose budget is the time
 // assimp takes to read the file, so neither uses node-based hash maps:
-// - welding hashes each position to 32 bits, radix-sorts (hash, index) pairs (stable, so each
-//   run of equal hashes stays in index order) and compares positions exactly inside each run;
+// - welding: see engine/vertex_welding.hpp;
 // - edge use is counted by bucketing each undirected edge under its smaller vertex (a CSR
 //   layout), sorting the few edges of each bucket and comparing directions.
 #include "engine/mesh_topology.hpp"
+
+#include "engine/vertex_welding.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -17,47 +18,6 @@
 
 namespace tumble::engine {
 namespace {
-
-/// Bits of a coordinate with -0 folded onto +0, so that equal values hash equally.
-std::uint64_t coordinate_bits(double value) {
-  return std::bit_cast<std::uint64_t>(value == 0.0 ? 0.0 : value);
-}
-
-/// A 32-bit hash of a position (a multiply-xorshift mix of the three coordinates' bits).
-std::uint32_t position_hash(const Eigen::Vector3d& p) {
-  std::uint64_t h = 0x9e3779b97f4a7c15ull;
-  for (int axis = 0; axis < 3; ++axis) {
-    h ^= coordinate_bits(p[axis]);
-    h *= 0xbf58476d1ce4e5b9ull;
-    h ^= h >> 31;
-  }
-  h *= 0x94d049bb133111ebull;
-  return static_cast<std::uint32_t>(h >> 32);
-}
-
-bool same_position(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return a.x() == b.x() && a.y() == b.y() && a.z() == b.z();
-}
-
-struct KeyedIndex {
-  std::uint32_t key;
-  std::uint32_t index;
-};
-
-/// Stable LSD radix sort on 32-bit keys, 11 bits a pass.
-void radix_sort(std::vector<KeyedIndex>& items) {
-  constexpr int kBits = 11;
-  constexpr std::uint32_t kBuckets = 1u << kBits;
-  std::vector<KeyedIndex> scratch(items.size());
-  std::vector<std::size_t> offsets(kBuckets);
-  for (int shift = 0; shift < 32; shift += kBits) {
-    std::fill(offsets.begin(), offsets.end(), 0);
-    for (const KeyedIndex& item : items) ++offsets[(item.key >> shift) & (kBuckets - 1)];
-    std::exclusive_scan(offsets.begin(), offsets.end(), offsets.begin(), std::size_t{0});
-    for (const KeyedIndex& item : items) scratch[offsets[(item.key >> shift) & (kBuckets - 1)]++] = item;
-    items.swap(scratch);
-  }
-}
 
 /// Disjoint-set forest with path halving, for connected parts.
 class DisjointSets {
@@ -86,53 +46,16 @@ class DisjointSets {
 
 std::size_t weld_by_position(TriangleMesh& mesh) {
   const std::size_t count = mesh.positions.size();
-  if (count >= std::numeric_limits<std::uint32_t>::max()) {
-    throw std::length_error("weld_by_position: more than 2^32 - 1 vertices");
-  }
-
-  // Sort vertex indices by the hash of their position.
-  std::vector<KeyedIndex> order(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    order[i] = {position_hash(mesh.positions[i]), static_cast<std::uint32_t>(i)};
-  }
-  radix_sort(order);
-
-  // In each run of equal hashes, point every vertex at the first (lowest) index at its position.
-  std::vector<std::uint32_t> representative(count);
-  for (std::size_t begin = 0; begin < count;) {
-    std::size_t end = begin + 1;
-    while (end < count && order[end].key == order[begin].key) ++end;
-    for (std::size_t i = begin; i < end; ++i) {
-      const std::uint32_t vertex = order[i].index;
-      representative[vertex] = vertex;
-      for (std::size_t j = begin; j < i; ++j) {
-        const std::uint32_t earlier = order[j].index;
-        if (representative[earlier] == earlier &&
-            same_position(mesh.positions[earlier], mesh.positions[vertex])) {
-          representative[vertex] = earlier;
-          break;
-        }
-      }
-    }
-    begin = end;
-  }
-
-  // Number the surviving vertices in their original order and compact the positions.
-  std::vector<std::uint32_t> new_index(count);
-  std::uint32_t kept = 0;
-  for (std::size_t i = 0; i < count; ++i) {
-    if (representative[i] == i) {
-      new_index[i] = kept;
-      mesh.positions[kept++] = mesh.positions[i];
-    } else {
-      new_index[i] = new_index[representative[i]];
-    }
-  }
-  mesh.positions.resize(kept);
+  const WeldMap map = weld_positions<double>(count, [&](std::size_t i) {
+    const Eigen::Vector3d& p = mesh.positions[i];
+    return std::array<double, 3>{p.x(), p.y(), p.z()};
+  });
+  for (std::size_t i = 0; i < map.kept.size(); ++i) mesh.positions[i] = mesh.positions[map.kept[i]];
+  mesh.positions.resize(map.kept.size());
   for (auto& triangle : mesh.triangles) {
-    for (std::uint32_t& v : triangle) v = new_index[v];
+    for (std::uint32_t& v : triangle) v = map.new_index[v];
   }
-  return count - kept;
+  return count - map.kept.size();
 }
 
 std::size_t remove_degenerate_triangles(TriangleMesh& mesh) {

@@ -6,10 +6,13 @@
 #include <string>
 #include <vector>
 
-#include <CLI/App.hpp>
 #include <nlohmann/json.hpp>
 
 #include "engine/mesh_analysis.hpp"
+
+namespace CLI {
+class App;
+}  // namespace CLI
 
 namespace tumble::app {
 

@@ -1,0 +1,94 @@
+// Speed of the mass-property pipeline on a 1M-triangle mesh.
+//
+//   BM_SolidIntegrals        the integration kernel alone (triangles/s on one core)
+//   BM_AssimpReadStl         assimp reading a 1M-triangle binary STL, no post-processing
+//   BM_InspectStl            `tumble inspect` end to end on that file: import, weld, checks,
+//                            integrals, principal axes (the budget: 2x assimp's read)
+//   BM_Weld, BM_Topology     the two linear-time passes, for the breakdown
+#include <benchmark/benchmark.h>
+
+#include <assimp/Importer.hpp>
+#include <assimp/scene.h>
+
+#include <filesystem>
+
+#include "app/inspect_command.hpp"
+#include "engine/mass_properties.hpp"
+#include "engine/mesh_topology.hpp"
+#include "engine/primitive_meshes.hpp"
+#include "support/stl_writer.hpp"
+
+namespace {
+
+using namespace tumble;
+
+/// A torus of 1000 x 500 segments: 1,000,000 triangles.
+const engine::TriangleMesh& million_triangle_mesh() {
+  static const engine::TriangleMesh mesh = engine::torus_mesh(1.0, 0.3, 1000, 500);
+  return mesh;
+}
+
+const std::filesystem::path& million_triangle_stl() {
+  static const std::filesystem::path file = [] {
+    const auto path = std::filesystem::temp_directory_path() / "tumble_bench_torus_1m.stl";
+    testing::write_binary_stl(path, million_triangle_mesh());
+    return path;
+  }();
+  return file;
+}
+
+void BM_SolidIntegrals(benchmark::State& state) {
+  const engine::TriangleMesh& mesh = million_triangle_mesh();
+  const Eigen::Vector3d reference(0.01, 0.02, 0.03);
+  for (auto _ : state) benchmark::DoNotOptimize(engine::solid_integrals(mesh, reference));
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(mesh.triangles.size()));
+}
+BENCHMARK(BM_SolidIntegrals)->Unit(benchmark::kMillisecond);
+
+void BM_Weld(benchmark::State& state) {
+  // The soup of the binary STL: three vertices per triangle.
+  engine::TriangleMesh soup;
+  for (const auto& t : million_triangle_mesh().triangles) {
+    const auto base = static_cast<std::uint32_t>(soup.positions.size());
+    for (const auto v : t) soup.positions.push_back(million_triangle_mesh().positions[v]);
+    soup.triangles.push_back({base, base + 1, base + 2});
+  }
+  for (auto _ : state) {
+    state.PauseTiming();
+    engine::TriangleMesh copy = soup;
+    state.ResumeTiming();
+    benchmark::DoNotOptimize(engine::weld_by_position(copy));
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(soup.triangles.size()));
+}
+BENCHMARK(BM_Weld)->Unit(benchmark::kMillisecond);
+
+void BM_Topology(benchmark::State& state) {
+  const engine::TriangleMesh& mesh = million_triangle_mesh();
+  for (auto _ : state) benchmark::DoNotOptimize(engine::analyze_topology(mesh));
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(mesh.triangles.size()));
+}
+BENCHMARK(BM_Topology)->Unit(benchmark::kMillisecond);
+
+void BM_AssimpReadStl(benchmark::State& state) {
+  const auto& file = million_triangle_stl();
+  for (auto _ : state) {
+    Assimp::Importer importer;
+    const aiScene* scene = importer.ReadFile(file.string(), 0);
+    if (scene == nullptr) state.SkipWithError("assimp could not read the file");
+    benchmark::DoNotOptimize(scene);
+  }
+  state.SetItemsProcessed(state.iterations() * 1'000'000);
+}
+BENCHMARK(BM_AssimpReadStl)->Unit(benchmark::kMillisecond);
+
+void BM_InspectStl(benchmark::State& state) {
+  const auto& file = million_triangle_stl();
+  for (auto _ : state) benchmark::DoNotOptimize(app::inspect_file(file, {}));
+  state.SetItemsProcessed(state.iterations() * 1'000'000);
+}
+BENCHMARK(BM_InspectStl)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
