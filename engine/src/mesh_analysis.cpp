@@ -90,27 +90,44 @@ std::vector<PartSummary> summarize_parts(const TriangleMesh& mesh, const Topolog
   return parts;
 }
 
-/// Winding number of part `outer` (as currently oriented) around `point`: 1 inside, 0 outside.
-double winding_number(const TriangleMesh& mesh, const Topology& topology, std::uint32_t outer,
-                      bool outer_reversed, const Eigen::Vector3d& point) {
+/// Winding number of one part around `point`: +1 inside an outward-wound part, -1 inside an
+/// inward-wound one, 0 outside; negated when `reversed` (the part is to be flipped).
+double part_winding_number(const TriangleMesh& mesh, const Topology& topology, std::uint32_t part,
+                           bool reversed, const Eigen::Vector3d& point) {
   double total = 0.0;
   for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
-    if (topology.triangle_part[i] != outer) continue;
+    if (topology.triangle_part[i] != part) continue;
     const auto& t = mesh.triangles[i];
     total += solid_angle(mesh.positions[t[0]] - point, mesh.positions[t[1]] - point,
                          mesh.positions[t[2]] - point);
   }
   const double winding = total / (4.0 * std::numbers::pi);
-  return outer_reversed ? -winding : winding;
+  return reversed ? -winding : winding;
 }
 
-bool box_inside(const PartSummary& inner, const PartSummary& outer) {
-  return (inner.low.array() >= outer.low.array()).all() &&
-         (inner.high.array() <= outer.high.array()).all();
+bool box_contains(const PartSummary& part, const Eigen::Vector3d& point) {
+  return (point.array() >= part.low.array()).all() && (point.array() <= part.high.array()).all();
+}
+
+/// How many layers of matter the other parts put around part `self`'s sample vertex: the sum
+/// of their winding numbers (an outer shell +1, a cavity -1). Parts whose bounding box misses
+/// the point contribute exactly 0 and are skipped.
+double matter_around(const std::vector<PartSummary>& parts, std::uint32_t self,
+                     const TriangleMesh& mesh, const Topology& topology) {
+  const Eigen::Vector3d& point = mesh.positions[parts[self].sample_vertex];
+  double layers = 0.0;
+  for (std::uint32_t other = 0; other < parts.size(); ++other) {
+    if (other == self || !box_contains(parts[other], point)) continue;
+    // The triangles' own winding gives the sign; a part marked for flipping counts reversed.
+    layers += part_winding_number(mesh, topology, other, parts[other].reversed, point);
+  }
+  return layers;
 }
 
 /// Decides which parts to reverse and which are cavities. A negative total means the whole
-/// file is inside out (a common export error): everything is reversed first.
+/// file is inside out (a common export error): everything is reversed first. Then an
+/// inward-facing part inside matter is a cavity, one inside nothing is flipped with a warning,
+/// and an outward-facing part inside matter overlaps it (counted twice: warned).
 void orient_parts(std::vector<PartSummary>& parts, double signed_total, const TriangleMesh& mesh,
                   const Topology& topology, MeshReport& report) {
   if (signed_total < 0.0) {
@@ -119,34 +136,30 @@ void orient_parts(std::vector<PartSummary>& parts, double signed_total, const Tr
     report.warnings.push_back("the faces point inward (negative volume): flipped them all");
   }
   if (parts.size() < 2) return;
+  const auto inward = [&](std::uint32_t i) {
+    return (parts[i].signed_volume < 0.0) != parts[i].reversed;
+  };
+  const auto count = static_cast<std::uint32_t>(parts.size());
+  const std::string of = " of " + std::to_string(count);
 
-  // Test each part against every part whose bounding box contains it.
-  for (std::uint32_t inner = 0; inner < parts.size(); ++inner) {
-    const bool inner_negative = (parts[inner].signed_volume < 0.0) != parts[inner].reversed;
-    const Eigen::Vector3d& point = mesh.positions[parts[inner].sample_vertex];
-    std::optional<std::uint32_t> container;
-    for (std::uint32_t outer = 0; outer < parts.size() && !container; ++outer) {
-      if (outer == inner || !box_inside(parts[inner], parts[outer])) continue;
-      const bool outer_negative = (parts[outer].signed_volume < 0.0) != parts[outer].reversed;
-      if (outer_negative) continue;
-      const double winding = winding_number(mesh, topology, outer, parts[outer].reversed, point);
-      if (winding > 0.5) container = outer;
-    }
-    if (inner_negative && container) {
-      parts[inner].cavity = true;
+  // Inward-facing parts first: cavities stay, lone ones are flipped.
+  for (std::uint32_t i = 0; i < count; ++i) {
+    if (!inward(i)) continue;
+    if (matter_around(parts, i, mesh, topology) > 0.5) {
       ++report.cavities;
-    } else if (inner_negative) {
-      parts[inner].reversed = !parts[inner].reversed;
-      report.warnings.push_back("part " + std::to_string(inner + 1) + " of " +
-                                std::to_string(parts.size()) +
+    } else {
+      parts[i].reversed = !parts[i].reversed;
+      report.warnings.push_back("part " + std::to_string(i + 1) + of +
                                 " points inward but lies inside no other part: flipped it");
-    } else if (container) {
-      report.warnings.push_back(
-          "part " + std::to_string(inner + 1) + " lies inside part " +
-          std::to_string(*container + 1) +
-          " with the same orientation, so their shared volume counts twice (reverse its winding "
-          "if it is meant as a cavity)");
     }
+  }
+  // Then outward-facing parts that sit in matter.
+  for (std::uint32_t i = 0; i < count; ++i) {
+    if (inward(i) || matter_around(parts, i, mesh, topology) < 0.5) continue;
+    report.warnings.push_back("part " + std::to_string(i + 1) + of +
+                              " lies inside another part with the same orientation, so their "
+                              "shared volume counts twice (reverse its winding if it is meant "
+                              "as a cavity)");
   }
 }
 
@@ -176,9 +189,11 @@ MeshReport analyze_mesh(TriangleMesh mesh, const MassOptions& options, const std
     }
   }
 
-  // Weld, then drop triangles that use a vertex twice.
+  // Weld, then drop triangles that use a vertex twice and vertices no triangle uses (they
+  // are not part of the body, and would move the bounding box).
   report.welded_vertices = weld_by_position(mesh);
   report.degenerate_triangles = remove_degenerate_triangles(mesh);
+  remove_unreferenced_vertices(mesh);
   report.vertices = mesh.positions.size();
   report.triangles = mesh.triangles.size();
   if (mesh.triangles.empty()) {

@@ -1,6 +1,7 @@
 // Mesh import through assimp.
 //
-// Post-processing is kept to triangulation and dropping points and lines: no
+// Post-processing is kept to triangulation (points and lines are skipped while collecting; asking
+// assimp to remove them makes it fail on files that have nothing else): no
 // aiProcess_JoinIdenticalVertices (slow, and it compares normals: the engine welds by position
 // itself) and no aiProcess_FindDegenerates (its area threshold is absolute and deletes whole
 // small meshes). Node transforms are applied by walking the node tree in double precision.
@@ -94,9 +95,8 @@ TriangleMesh import_mesh(const std::filesystem::path& file, std::size_t* welded_
   if (std::filesystem::file_size(file, error) == 0 && !error) fail(file, "is empty");
 
   Assimp::Importer importer;
-  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const aiScene* scene = importer.ReadFile(file.string(), 0);
-  // Triangulate and drop points and lines only when the file has any (STL never does).
+  // Triangulate only when the file has polygons (STL never does).
   const auto has_non_triangles = [](const aiScene& s) {
     for (unsigned m = 0; m < s.mNumMeshes; ++m) {
       if (s.mMeshes[m]->mPrimitiveTypes & ~aiPrimitiveType_TRIANGLE) return true;

@@ -68,6 +68,27 @@ std::size_t remove_degenerate_triangles(TriangleMesh& mesh) {
   return count;
 }
 
+std::size_t remove_unreferenced_vertices(TriangleMesh& mesh) {
+  constexpr std::uint32_t kUnused = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> new_index(mesh.positions.size(), kUnused);
+  for (const auto& t : mesh.triangles) {
+    for (const std::uint32_t v : t) new_index[v] = 0;
+  }
+  std::uint32_t kept = 0;
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    if (new_index[i] == kUnused) continue;
+    new_index[i] = kept;
+    mesh.positions[kept++] = mesh.positions[i];
+  }
+  const std::size_t removed = mesh.positions.size() - kept;
+  if (removed == 0) return 0;
+  mesh.positions.resize(kept);
+  for (auto& t : mesh.triangles) {
+    for (std::uint32_t& v : t) v = new_index[v];
+  }
+  return removed;
+}
+
 Topology analyze_topology(const TriangleMesh& mesh) {
   const std::size_t vertex_count = mesh.positions.size();
   if (vertex_count >= (std::size_t{1} << 31)) {

@@ -19,6 +19,9 @@ std::size_t weld_by_position(TriangleMesh& mesh);
 /// nothing to the integrals). Returns how many were removed.
 std::size_t remove_degenerate_triangles(TriangleMesh& mesh);
 
+/// Removes vertices that no triangle uses, keeping the others in order. Returns how many.
+std::size_t remove_unreferenced_vertices(TriangleMesh& mesh);
+
 /// How the triangles share their edges, and into how many connected parts they fall.
 struct Topology {
   /// Edges used by exactly one triangle: the surface is open there.
