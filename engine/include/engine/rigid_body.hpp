@@ -1,0 +1,101 @@
+#pragma once
+/// @file A rigid body as the integrators see it: a rotor about a fixed or moving centre.
+///
+/// Every body turns about a rotation centre: its centre of mass when free, its pivot when
+/// pivoted (a top). The integrators work in the principal frame of the inertia about that
+/// centre (diagonal `moments`); `principal_to_body` carries orientations back to the body
+/// frame the user modelled in. State: centre-of-mass position and velocity (ignored and
+/// derived for pivoted bodies), orientation (principal frame to world) and world angular
+/// momentum about the rotation centre.
+///
+/// Force terms are a list holding only what the scene asks for: a body without gravity,
+/// torque or spring evaluates no force code at all on its step path.
+
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace tumble::engine {
+
+/// Uniform gravity acting on the centre of mass (potential -m g . x).
+struct Gravity {
+  Eigen::Vector3d acceleration;  ///< m/s^2
+};
+
+/// A constant torque (not conservative: energy and |L| are not invariants with it).
+struct ConstantTorque {
+  Eigen::Vector3d torque;  ///< N m
+  bool body_frame = false; ///< true: fixed in the body (principal frame); false: in the world
+};
+
+/// A linear spring-damper from a world anchor to a body point.
+struct Spring {
+  Eigen::Vector3d anchor;  ///< world, m
+  Eigen::Vector3d attach;  ///< body point relative to the rotation centre, principal frame, m
+  double stiffness = 0.0;  ///< N/m
+  double damping = 0.0;    ///< N s/m
+};
+
+using ForceTerm = std::variant<Gravity, ConstantTorque, Spring>;
+
+/// The constant properties of one body.
+struct BodyModel {
+  std::string name;
+  double mass = 1.0;                                         ///< kg
+  Eigen::Vector3d moments = Eigen::Vector3d::Ones();         ///< principal, about the rotation centre
+  Eigen::Quaterniond principal_to_body = Eigen::Quaterniond::Identity();
+  bool pivoted = false;
+  Eigen::Vector3d pivot = Eigen::Vector3d::Zero();           ///< world position of the pivot
+  Eigen::Vector3d center_offset = Eigen::Vector3d::Zero();   ///< centre of mass minus rotation centre, principal frame
+  std::vector<ForceTerm> forces;                             ///< only the terms the scene asks for
+
+  /// True when nothing exerts a torque about the rotation centre (the exact solution applies).
+  bool torque_free() const;
+  /// True when every force term is conservative (energy is an invariant).
+  bool conservative() const;
+};
+
+/// The evolving state of one body.
+struct BodyState {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();           ///< centre of mass, world
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();           ///< of the centre of mass
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  ///< principal frame to world
+  Eigen::Vector3d angular_momentum = Eigen::Vector3d::Zero();   ///< world, about the rotation centre
+
+  bool finite() const;
+};
+
+/// Net force on the centre of mass and torque about the rotation centre, world frame.
+struct Wrench {
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();
+};
+
+/// World angular velocity w = R J^-1 R^T L.
+Eigen::Vector3d angular_velocity(const BodyModel& body, const BodyState& state);
+
+/// The wrench of the body's force terms in `state` (zero, and nothing evaluated, when it has
+/// none). `omega` is the world angular velocity (for damping at a body point).
+Wrench wrench(const BodyModel& body, const BodyState& state, const Eigen::Vector3d& omega);
+
+/// Kinetic plus potential energy (gravity, springs), J.
+double energy(const BodyModel& body, const BodyState& state);
+
+/// For a pivoted body, places the centre of mass from the orientation: x = pivot + R c,
+/// v = w x R c. Does nothing for a free body.
+void update_pivot_kinematics(const BodyModel& body, BodyState& state);
+
+/// Orientation of the user's body frame (body to world) from the principal orientation.
+Eigen::Quaterniond body_orientation(const BodyModel& body, const BodyState& state);
+
+/// Unit quaternion exp(rotation_vector / 2): a turn by |v| about v.
+Eigen::Quaterniond rotation_quaternion(const Eigen::Vector3d& rotation_vector);
+
+/// Geodesic angle between two orientations, 2 atan2(|vec(a^* b)|, |w(a^* b)|) (handles q ~ -q;
+/// accurate for tiny angles, unlike acos).
+double orientation_angle(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b);
+
+}  // namespace tumble::engine

@@ -1,0 +1,42 @@
+#pragma once
+// Private to the engine: the stepper factories behind make_stepper, and what they share.
+
+#include <memory>
+
+#include "engine/integrators.hpp"
+#include "engine/rigid_body.hpp"
+
+namespace tumble::engine::steppers {
+
+/// Everything an integrator needs from the right-hand side at one state.
+struct Rates {
+  Eigen::Vector3d velocity;      ///< dx/dt
+  Eigen::Vector3d acceleration;  ///< dv/dt (zero for pivoted bodies: the pivot holds them)
+  Eigen::Vector3d omega;         ///< world angular velocity
+  Eigen::Vector3d torque;        ///< dL/dt, world
+};
+
+/// The right-hand side at `state`; no force code runs for a body without force terms.
+inline Rates rates(const BodyModel& body, const BodyState& state) {
+  Rates out{state.velocity, Eigen::Vector3d::Zero(), angular_velocity(body, state),
+            Eigen::Vector3d::Zero()};
+  if (!body.forces.empty()) {
+    const Wrench w = wrench(body, state, out.omega);
+    if (!body.pivoted) out.acceleration = w.force / body.mass;
+    out.torque = w.torque;
+  }
+  return out;
+}
+
+std::unique_ptr<BodyStepper> make_explicit_euler(const BodyModel& body);
+std::unique_ptr<BodyStepper> make_semi_implicit_euler(const BodyModel& body);
+std::unique_ptr<BodyStepper> make_seed_semi_implicit(const BodyModel& body);
+std::unique_ptr<BodyStepper> make_implicit_euler(const BodyModel& body);
+std::unique_ptr<BodyStepper> make_rk4(const BodyModel& body);
+std::unique_ptr<BodyStepper> make_midpoint(const BodyModel& body);
+std::unique_ptr<BodyStepper> make_dopri(const BodyModel& body, double tolerance);
+std::unique_ptr<BodyStepper> make_splitting(const BodyModel& body, int order);
+std::unique_ptr<BodyStepper> make_free_rotor(const BodyModel& body);
+std::unique_ptr<BodyStepper> make_exact(const BodyModel& body, const BodyState& initial);
+
+}  // namespace tumble::engine::steppers
