@@ -1,12 +1,15 @@
 // Volume and surface integrals of triangle meshes, and the mass properties they give.
 #include "engine/mass_properties.hpp"
 
+#include <cmath>
+
 namespace tumble::engine {
 namespace {
 
 /// Running sums of a mesh integral: 6 unique entries of a symmetric second moment.
 struct Sums {
   double measure = 0.0;
+  double absolute = 0.0;
   double fx = 0.0, fy = 0.0, fz = 0.0;
   double xx = 0.0, yy = 0.0, zz = 0.0, xy = 0.0, xz = 0.0, yz = 0.0;
 
@@ -28,6 +31,7 @@ struct Sums {
   MomentIntegrals scaled(double measure_scale, double first_scale, double second_scale) const {
     MomentIntegrals out;
     out.measure = measure * measure_scale;
+    out.absolute_measure = absolute * measure_scale;
     out.first = Eigen::Vector3d(fx, fy, fz) * first_scale;
     out.second << xx, xy, xz, xy, yy, yz, xz, yz, zz;
     out.second *= second_scale;
@@ -48,6 +52,7 @@ MomentIntegrals solid_integrals(const TriangleMesh& mesh, const Eigen::Vector3d&
     const Eigen::Vector3d c = p[t[2]] - reference;
     const double det = a.dot(b.cross(c));
     sums.measure += det;
+    sums.absolute += std::abs(det);
     sums.add(det, a, b, c);
   }
   return sums.scaled(1.0 / 6.0, 1.0 / 24.0, 1.0 / 120.0);
@@ -64,6 +69,7 @@ MomentIntegrals surface_integrals(const TriangleMesh& mesh, const Eigen::Vector3
     const Eigen::Vector3d c = p[t[2]] - reference;
     const double double_area = (b - a).cross(c - a).norm();
     sums.measure += double_area;
+    sums.absolute += double_area;
     sums.add(double_area, a, b, c);
   }
   return sums.scaled(0.5, 1.0 / 6.0, 1.0 / 24.0);

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <numbers>
 #include <sstream>
 
@@ -31,6 +32,11 @@ std::string plural(std::size_t count, const std::string& noun) {
 
 [[noreturn]] void fail(const std::string& source, const std::string& problem) {
   throw InputError(source + ": " + problem);
+}
+
+[[noreturn]] void fail_zero_volume(const std::string& source) {
+  fail(source, "encloses zero volume (a flat or collapsed surface); for a thin sheet use "
+               "--shell THICKNESS");
 }
 
 void check_options(const MassOptions& options, const std::string& source) {
@@ -211,8 +217,14 @@ MeshReport analyze_mesh(TriangleMesh mesh, const MassOptions& options, const std
   }
   const Eigen::Vector3d reference = 0.5 * (report.bounds_min + report.bounds_max);
 
-  // Edge topology and connected parts.
-  const Topology topology = analyze_topology(mesh);
+  // Edge topology and connected parts; on large meshes on a second thread, while the volume
+  // integrals (needed in the common single-part case) are summed on this one.
+  const bool concurrent = !report.shell && mesh.triangles.size() >= 200'000;
+  std::future<Topology> pending = std::async(
+      concurrent ? std::launch::async : std::launch::deferred, [&mesh] { return analyze_topology(mesh); });
+  MomentIntegrals solid;
+  if (concurrent) solid = solid_integrals(mesh, reference);
+  const Topology topology = pending.get();
   report.parts = topology.parts;
   report.boundary_edges = topology.boundary_edges;
   report.inconsistent_edges = topology.inconsistent_edges;
@@ -246,22 +258,34 @@ MeshReport analyze_mesh(TriangleMesh mesh, const MassOptions& options, const std
                        " used twice in the same direction (neighbouring faces disagree on "
                        "inside and outside)");
     }
-    std::vector<PartSummary> parts = summarize_parts(mesh, topology, reference);
-    double signed_total = 0.0, absolute_total = 0.0;
-    for (const PartSummary& part : parts) {
-      signed_total += part.signed_volume;
-      absolute_total += part.absolute_volume;
+    if (topology.parts == 1) {
+      // One part: its orientation is the sign of the volume; flipping every face negates all
+      // three integrals, so no second pass is needed.
+      if (!concurrent) solid = solid_integrals(mesh, reference);
+      if (!(std::abs(solid.measure) > 1e-9 * solid.absolute_measure)) fail_zero_volume(source);
+      if (solid.measure < 0.0) {
+        solid.measure = -solid.measure;
+        solid.first = -solid.first;
+        solid.second = -solid.second;
+        report.flipped = true;
+        report.warnings.push_back("the faces point inward (negative volume): flipped them all");
+      }
+      integrals = solid;
+    } else {
+      std::vector<PartSummary> parts = summarize_parts(mesh, topology, reference);
+      double signed_total = 0.0, absolute_total = 0.0;
+      for (const PartSummary& part : parts) {
+        signed_total += part.signed_volume;
+        absolute_total += part.absolute_volume;
+      }
+      // Zero volume relative to the rounding scale of the signed sum (scale-free).
+      if (!(std::abs(signed_total) > 1e-9 * absolute_total)) fail_zero_volume(source);
+      orient_parts(parts, signed_total, mesh, topology, report);
+      const bool any_reversed =
+          std::any_of(parts.begin(), parts.end(), [](const PartSummary& p) { return p.reversed; });
+      if (any_reversed) flip_reversed_parts(mesh, topology, parts);
+      integrals = (any_reversed || !concurrent) ? solid_integrals(mesh, reference) : solid;
     }
-    // Zero volume relative to the rounding scale of the signed sum (scale-free).
-    if (!(std::abs(signed_total) > 1e-9 * absolute_total)) {
-      fail(source, "encloses zero volume (a flat or collapsed surface); for a thin sheet use "
-                   "--shell THICKNESS");
-    }
-    orient_parts(parts, signed_total, mesh, topology, report);
-    if (std::any_of(parts.begin(), parts.end(), [](const PartSummary& p) { return p.reversed; })) {
-      flip_reversed_parts(mesh, topology, parts);
-    }
-    integrals = solid_integrals(mesh, reference);
     report.volume = integrals.measure;
     if (!(report.volume > 0.0)) {
       fail(source, "encloses a non-positive volume (" + format_number(report.volume) +

@@ -61,7 +61,7 @@ void BM_Weld(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(soup.triangles.size()));
 }
-BENCHMARK(BM_Weld)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Weld)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_Topology(benchmark::State& state) {
   const engine::TriangleMesh& mesh = million_triangle_mesh();
@@ -80,14 +80,14 @@ void BM_AssimpReadStl(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations() * 1'000'000);
 }
-BENCHMARK(BM_AssimpReadStl)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_AssimpReadStl)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_InspectStl(benchmark::State& state) {
   const auto& file = million_triangle_stl();
   for (auto _ : state) benchmark::DoNotOptimize(app::inspect_file(file, {}));
   state.SetItemsProcessed(state.iterations() * 1'000'000);
 }
-BENCHMARK(BM_InspectStl)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_InspectStl)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 

@@ -16,6 +16,7 @@ namespace tumble::engine {
 /// Integrals of 1, (x - r) and (x - r)(x - r)^T over a solid (or a surface, for shells).
 struct MomentIntegrals {
   double measure = 0.0;                                     ///< volume (m^3) or area (m^2)
+  double absolute_measure = 0.0;  ///< sum of |signed parts| of `measure`: its rounding scale
   Eigen::Vector3d first = Eigen::Vector3d::Zero();          ///< integral of (x - r)
   Eigen::Matrix3d second = Eigen::Matrix3d::Zero();         ///< integral of (x - r)(x - r)^T
 };
