@@ -1,6 +1,7 @@
 // `tumble inspect`.
 #include "app/inspect_command.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <ostream>
 #include <sstream>
@@ -27,8 +28,15 @@ std::string fixed(const char* format, double value) {
   return buffer;
 }
 
-std::string vector_text(const Eigen::Vector3d& v) {
-  return "[" + fixed("% .9g", v.x()) + ", " + fixed("% .9g", v.y()) + ", " + fixed("% .9g", v.z()) + "]";
+/// Three aligned numbers, 7 significant digits; entries below 1e-12 of `scale` are rounding
+/// noise of an exact zero and print as 0 (the JSON report keeps every digit).
+std::string vector_text(const Eigen::Vector3d& v, double scale) {
+  std::string out = "[";
+  for (int i = 0; i < 3; ++i) {
+    const double value = std::abs(v[i]) < 1e-12 * scale ? 0.0 : v[i];
+    out += fixed(" %14.7g", value);
+  }
+  return out + " ]";
 }
 
 std::string with_thousands(std::size_t value) {
@@ -120,7 +128,10 @@ std::string format_report(const engine::MeshReport& report) {
                        (report.cavities ? ", " + std::to_string(report.cavities) + " cavities" : ""));
   row("vertices", with_thousands(report.vertices) + " (" + with_thousands(report.welded_vertices) +
                       " duplicates welded)");
-  row("size", vector_text(report.bounds_max - report.bounds_min) + " m");
+  const Eigen::Vector3d size = report.bounds_max - report.bounds_min;
+  const double length = size.maxCoeff();
+  const double moment = report.principal.moments.maxCoeff();
+  row("size", vector_text(size, length) + " m");
   if (report.shell) {
     row("area", fixed("%.9g", report.area) + " m^2");
     row("thickness", fixed("%.9g", report.thickness) + " m");
@@ -128,13 +139,15 @@ std::string format_report(const engine::MeshReport& report) {
   row("volume", fixed("%.9g", report.volume) + " m^3");
   row("density", fixed("%.9g", report.density) + " kg/m^3");
   row("mass", fixed("%.9g", mp.mass) + " kg");
-  row("centre of mass", vector_text(mp.center_of_mass) + " m");
+  row("centre of mass", vector_text(mp.center_of_mass, length) + " m");
   out << "  inertia about the centre of mass, file axes (kg m^2)\n";
-  for (int r = 0; r < 3; ++r) out << "                    " << vector_text(mp.inertia.row(r)) << "\n";
-  row("principal moments", vector_text(report.principal.moments) + " kg m^2 (I1 <= I2 <= I3)");
+  for (int r = 0; r < 3; ++r) {
+    out << "                    " << vector_text(mp.inertia.row(r), moment) << "\n";
+  }
+  row("principal moments", vector_text(report.principal.moments, moment) + " kg m^2 (I1 <= I2 <= I3)");
   out << "  principal axes (columns; a rotation from principal to file axes)\n";
   for (int r = 0; r < 3; ++r) {
-    out << "                    " << vector_text(report.principal.axes.row(r)) << "\n";
+    out << "                    " << vector_text(report.principal.axes.row(r), 1.0) << "\n";
   }
   out << "  checks\n";
   const auto check = [&](bool ok, const std::string& text) {
