@@ -49,13 +49,14 @@ class SemiImplicitEuler final : public BodyStepper {
  public:
   explicit SemiImplicitEuler(const BodyModel& body) : body_(body) {}
   void step(BodyState& s, double, double h) override {
-    const Rates r = rates(body_, s);
-    // Kick with the old forces, then drift with the new velocities.
-    s.angular_momentum += h * r.torque;
-    if (!body_.pivoted) {
+    // Kick with the old forces (none evaluated for a body without force terms), then drift
+    // with the new velocities.
+    if (!body_.forces.empty()) {
+      const Rates r = rates(body_, s);
+      s.angular_momentum += h * r.torque;
       s.velocity += h * r.acceleration;
-      s.position += h * s.velocity;
     }
+    if (!body_.pivoted) s.position += h * s.velocity;
     const Eigen::Vector3d omega = angular_velocity(body_, s);  // new L, old orientation
     s.orientation = (rotation_quaternion(h * omega) * s.orientation).normalized();
   }
