@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/inspect_command.hpp"
+#include "app/simulate_command.hpp"
 #include "engine/input_error.hpp"
 
 int main(int argc, char** argv) {
@@ -14,6 +15,8 @@ int main(int argc, char** argv) {
 
   tumble::app::InspectOptions inspect_options;
   CLI::App& inspect = tumble::app::add_inspect_command(cli, inspect_options);
+  tumble::app::SimulateOptions simulate_options;
+  CLI::App& simulate = tumble::app::add_simulate_command(cli, simulate_options);
 
   try {
     cli.parse(argc, argv);
@@ -23,6 +26,9 @@ int main(int argc, char** argv) {
 
   try {
     if (inspect.parsed()) return tumble::app::run_inspect(inspect_options, std::cout, std::cerr);
+    if (simulate.parsed()) {
+      return tumble::app::run_simulate(simulate_options, std::cout, std::cerr);
+    }
   } catch (const tumble::engine::InputError& error) {
     std::cerr << "tumble: error: " << error.what() << "\n";
     return 1;
