@@ -1,0 +1,288 @@
+#include "ffmpeg_sink.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <thread>
+#include <vector>
+
+#include "frame_queue.hpp"
+#include "output_paths.hpp"
+
+extern char** environ;
+
+namespace tumble::render::detail {
+
+namespace {
+
+/// Encoder arguments per kind (after the raw-video input).
+std::vector<std::string> encoder_arguments(SinkKind kind) {
+  switch (kind) {
+    case SinkKind::kMp4:
+      return {"-c:v", "libx264", "-preset", "veryfast", "-pix_fmt", "yuv420p", "-f", "mp4"};
+    case SinkKind::kWebm:
+      return {"-c:v",     "libvpx-vp9", "-deadline", "realtime", "-cpu-used", "8",
+              "-row-mt",  "1",          "-b:v",      "0",        "-crf",      "32",
+              "-pix_fmt", "yuv420p",    "-f",        "webm"};
+    case SinkKind::kGif:
+      // One pass: split the stream, build a palette from one copy and apply it to the other.
+      return {"-filter_complex",
+              "[0:v]split[a][b];[a]palettegen=stats_mode=diff[p];[b][p]paletteuse=dither=bayer:"
+              "bayer_scale=4",
+              "-loop",
+              "0",
+              "-f",
+              "gif"};
+    case SinkKind::kPngSequence:
+      break;
+  }
+  throw std::logic_error("ffmpeg sink: not a video kind");
+}
+
+/// The last two non-empty lines of ffmpeg's stderr on one line (libx264, say, names the
+/// cause on the line before ffmpeg's generic "Error initializing output stream").
+std::string last_lines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::size_t begin = 0;
+  while (begin < text.size()) {
+    std::size_t end = text.find_first_of("\r\n", begin);
+    if (end == std::string::npos) end = text.size();
+    if (end > begin) lines.push_back(text.substr(begin, end - begin));
+    begin = end + 1;
+  }
+  if (lines.empty()) return "no message on stderr";
+  if (lines.size() == 1) return lines.back();
+  return lines[lines.size() - 2] + " / " + lines.back();
+}
+
+/// Writes all of `size` bytes; false on a broken pipe or other error.
+bool write_all(int fd, const std::uint8_t* data, std::size_t size) {
+  while (size > 0) {
+    const ssize_t written = ::write(fd, data, size);
+    if (written < 0) {
+      if (errno == EINTR) continue;
+      return false;
+    }
+    data += written;
+    size -= static_cast<std::size_t>(written);
+  }
+  return true;
+}
+
+class FfmpegSink final : public ImageSink {
+ public:
+  FfmpegSink(const std::filesystem::path& target, SinkKind kind, const SinkOptions& options)
+      : target_(target),
+        temporary_(temporary_sibling(target)),
+        options_(options),
+        queue_(options.queue_frames) {
+    // The destination must be writable before any frame is rendered.
+    require_output_directory(target_);
+    const int probe = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (probe < 0) {
+      throw std::runtime_error("cannot write '" + target_.string() + "': directory '" +
+                               output_directory(target_).string() + "': " + std::strerror(errno));
+    }
+    ::close(probe);
+    try {
+      spawn(kind);
+    } catch (...) {
+      std::error_code ignored;
+      std::filesystem::remove(temporary_, ignored);
+      throw;
+    }
+    stderr_reader_ = std::thread([this] { read_stderr(); });
+    writer_ = std::thread([this] { write_loop(); });
+  }
+
+  ~FfmpegSink() override {
+    if (!finished_) abort();
+  }
+
+  void write(const Image& frame) override {
+    if (frame.width != options_.width || frame.height != options_.height) {
+      throw std::invalid_argument("video sink '" + target_.string() + "': frame is " +
+                                  std::to_string(frame.width) + "x" + std::to_string(frame.height) +
+                                  ", expected " + std::to_string(options_.width) + "x" +
+                                  std::to_string(options_.height));
+    }
+    if (finished_) throw std::runtime_error("video sink '" + target_.string() + "' is closed");
+    if (pipe_broken()) fail();
+    queue_.push(frame, frames_);
+    ++frames_;
+  }
+
+  void finish() override {
+    if (finished_) return;
+    const int status = stop(/*kill_child=*/false);
+    if (status != 0 || pipe_broken_) fail_after_stop(status);
+    std::error_code error;
+    std::filesystem::rename(temporary_, target_, error);
+    if (error) {
+      std::filesystem::remove(temporary_, error);
+      finished_ = true;
+      throw std::runtime_error("cannot move video into '" + target_.string() +
+                               "': " + error.message());
+    }
+    finished_ = true;
+  }
+
+  std::size_t frames() const override { return frames_; }
+
+ private:
+  /// Starts ffmpeg reading raw RGBA on stdin, stderr captured, writing the temporary file.
+  void spawn(SinkKind kind) {
+    char size[64];
+    std::snprintf(size, sizeof size, "%dx%d", options_.width, options_.height);
+    char rate[64];
+    std::snprintf(rate, sizeof rate, "%.6g", options_.fps);
+    std::vector<std::string> arguments = {
+        "ffmpeg", "-hide_banner", "-nostdin", "-nostats", "-loglevel", "error",
+        "-y",     "-f",           "rawvideo", "-pix_fmt", "rgba",      "-s",
+        size,     "-r",           rate,       "-i",       "-"};
+    for (std::string& argument : encoder_arguments(kind)) arguments.push_back(std::move(argument));
+    arguments.push_back(temporary_.string());
+    std::vector<char*> argv;
+    for (std::string& argument : arguments) argv.push_back(argument.data());
+    argv.push_back(nullptr);
+
+    int in[2];
+    int err[2];
+    if (::pipe2(in, O_CLOEXEC) != 0 || ::pipe2(err, O_CLOEXEC) != 0) {
+      throw std::runtime_error("cannot start ffmpeg: pipe: " + std::string(std::strerror(errno)));
+    }
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_adddup2(&actions, in[0], STDIN_FILENO);
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_adddup2(&actions, err[1], STDERR_FILENO);
+    const int spawned = ::posix_spawnp(&child_, "ffmpeg", &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    ::close(in[0]);
+    ::close(err[1]);
+    if (spawned != 0) {
+      ::close(in[1]);
+      ::close(err[0]);
+      child_ = -1;
+      throw std::runtime_error(
+          spawned == ENOENT ? "cannot write '" + target_.string() + "': ffmpeg not found on PATH"
+                            : "cannot write '" + target_.string() +
+                                  "': cannot start ffmpeg: " + std::strerror(spawned));
+    }
+    stdin_ = in[1];
+    stderr_ = err[0];
+  }
+
+  /// Keeps the tail of ffmpeg's stderr for error messages.
+  void read_stderr() {
+    char buffer[4096];
+    for (;;) {
+      const ssize_t n = ::read(stderr_, buffer, sizeof buffer);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) break;
+      std::lock_guard lock(mutex_);
+      stderr_text_.append(buffer, static_cast<std::size_t>(n));
+      if (stderr_text_.size() > 16384) stderr_text_.erase(0, stderr_text_.size() - 8192);
+    }
+    ::close(stderr_);
+  }
+
+  /// Pipes queued frames into ffmpeg; after a broken pipe, drains the queue without writing.
+  void write_loop() {
+    // A broken pipe must be an error return here, not a process-killing SIGPIPE.
+    sigset_t pipe_signal;
+    sigemptyset(&pipe_signal);
+    sigaddset(&pipe_signal, SIGPIPE);
+    pthread_sigmask(SIG_BLOCK, &pipe_signal, nullptr);
+    FrameQueue::Item item;
+    while (queue_.pop(item)) {
+      if (!pipe_broken() && !write_all(stdin_, item.rgba.data(), item.rgba.size())) {
+        const timespec zero{0, 0};
+        sigtimedwait(&pipe_signal, nullptr, &zero);  // consume the pending SIGPIPE
+        std::lock_guard lock(mutex_);
+        pipe_broken_ = true;
+      }
+      queue_.recycle(std::move(item.rgba));
+      item.rgba = {};
+    }
+  }
+
+  bool pipe_broken() {
+    std::lock_guard lock(mutex_);
+    return pipe_broken_;
+  }
+
+  /// Ends the stream (or kills ffmpeg) and returns its exit status (-1 if killed).
+  int stop(bool kill_child) {
+    if (kill_child) queue_.discard();
+    queue_.close();
+    if (writer_.joinable()) writer_.join();
+    if (stdin_ >= 0) ::close(stdin_);
+    stdin_ = -1;
+    if (child_ <= 0) return -1;
+    if (kill_child) ::kill(child_, SIGKILL);
+    int status = 0;
+    while (::waitpid(child_, &status, 0) < 0 && errno == EINTR) {
+    }
+    child_ = -1;
+    if (stderr_reader_.joinable()) stderr_reader_.join();
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+
+  /// ffmpeg stopped reading: collect its exit status and message, clean up, throw.
+  [[noreturn]] void fail() { fail_after_stop(stop(/*kill_child=*/false)); }
+
+  [[noreturn]] void fail_after_stop(int status) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary_, ignored);
+    finished_ = true;
+    std::string message;
+    {
+      std::lock_guard lock(mutex_);
+      message = last_lines(stderr_text_);
+    }
+    throw std::runtime_error("ffmpeg failed writing '" + target_.string() + "' (exit status " +
+                             std::to_string(status) + "): " + message);
+  }
+
+  void abort() {
+    stop(/*kill_child=*/true);
+    std::error_code ignored;
+    std::filesystem::remove(temporary_, ignored);
+    finished_ = true;
+  }
+
+  std::filesystem::path target_;
+  std::filesystem::path temporary_;
+  SinkOptions options_;
+  FrameQueue queue_;
+  pid_t child_ = -1;
+  int stdin_ = -1;
+  int stderr_ = -1;
+  std::thread writer_;
+  std::thread stderr_reader_;
+  std::mutex mutex_;
+  std::string stderr_text_;
+  bool pipe_broken_ = false;
+  std::size_t frames_ = 0;
+  bool finished_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<ImageSink> open_ffmpeg_sink(const std::filesystem::path& target, SinkKind kind,
+                                            const SinkOptions& options) {
+  return std::make_unique<FfmpegSink>(target, kind, options);
+}
+
+}  // namespace tumble::render::detail

@@ -1,0 +1,110 @@
+#include "gpu_mesh.hpp"
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace tumble::render::detail {
+
+namespace {
+
+void validate(const MeshData& mesh) {
+  if (mesh.positions.empty() || mesh.indices.empty()) {
+    throw std::invalid_argument("render mesh: no vertices or no triangles");
+  }
+  if (mesh.indices.size() % 3 != 0) {
+    throw std::invalid_argument("render mesh: index count " + std::to_string(mesh.indices.size()) +
+                                " is not a multiple of 3");
+  }
+  if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size()) {
+    throw std::invalid_argument("render mesh: " + std::to_string(mesh.normals.size()) +
+                                " normals for " + std::to_string(mesh.positions.size()) +
+                                " vertices");
+  }
+  for (const std::uint32_t index : mesh.indices) {
+    if (index >= mesh.positions.size()) {
+      throw std::invalid_argument("render mesh: index " + std::to_string(index) +
+                                  " out of range (" + std::to_string(mesh.positions.size()) +
+                                  " vertices)");
+    }
+  }
+}
+
+}  // namespace
+
+void GpuMesh::draw() const {
+  glBindVertexArray(vao);
+  if (index_buffer != 0) {
+    glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
+  } else {
+    glDrawArrays(GL_TRIANGLES, 0, count);
+  }
+}
+
+GpuMesh upload_mesh(const MeshData& mesh) {
+  validate(mesh);
+  GpuMesh gpu;
+
+  // Interleave position + normal; flat shading duplicates each triangle's corners.
+  std::vector<float> vertices;
+  if (!mesh.normals.empty()) {
+    vertices.reserve(6 * mesh.positions.size());
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+      const Eigen::Vector3f n = mesh.normals[i].normalized();
+      vertices.insert(vertices.end(), {mesh.positions[i].x(), mesh.positions[i].y(),
+                                       mesh.positions[i].z(), n.x(), n.y(), n.z()});
+    }
+  } else {
+    vertices.reserve(6 * mesh.indices.size());
+    for (std::size_t t = 0; t < mesh.indices.size(); t += 3) {
+      const Eigen::Vector3f& a = mesh.positions[mesh.indices[t]];
+      const Eigen::Vector3f& b = mesh.positions[mesh.indices[t + 1]];
+      const Eigen::Vector3f& c = mesh.positions[mesh.indices[t + 2]];
+      const Eigen::Vector3f n = (b - a).cross(c - a).normalized();
+      for (const Eigen::Vector3f* p : {&a, &b, &c}) {
+        vertices.insert(vertices.end(), {p->x(), p->y(), p->z(), n.x(), n.y(), n.z()});
+      }
+    }
+  }
+
+  // Bounding sphere: centre of the axis-aligned box, radius to the farthest vertex.
+  Eigen::AlignedBox3f box;
+  for (const auto& p : mesh.positions) box.extend(p);
+  gpu.centre = box.center();
+  for (const auto& p : mesh.positions) gpu.radius = std::max(gpu.radius, (p - gpu.centre).norm());
+
+  glGenVertexArrays(1, &gpu.vao);
+  glBindVertexArray(gpu.vao);
+  glGenBuffers(1, &gpu.vertex_buffer);
+  glBindBuffer(GL_ARRAY_BUFFER, gpu.vertex_buffer);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(float)),
+               vertices.data(), GL_STATIC_DRAW);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float),
+                        reinterpret_cast<const void*>(3 * sizeof(float)));
+  if (!mesh.normals.empty()) {
+    glGenBuffers(1, &gpu.index_buffer);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gpu.index_buffer);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+                 static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
+                 mesh.indices.data(), GL_STATIC_DRAW);
+    gpu.count = static_cast<GLsizei>(mesh.indices.size());
+  } else {
+    gpu.count = static_cast<GLsizei>(vertices.size() / 6);
+  }
+  glBindVertexArray(0);
+  return gpu;
+}
+
+void destroy_mesh(GpuMesh& mesh) {
+  if (mesh.vao != 0) glDeleteVertexArrays(1, &mesh.vao);
+  if (mesh.vertex_buffer != 0) glDeleteBuffers(1, &mesh.vertex_buffer);
+  if (mesh.index_buffer != 0) glDeleteBuffers(1, &mesh.index_buffer);
+  mesh = GpuMesh{};
+}
+
+}  // namespace tumble::render::detail

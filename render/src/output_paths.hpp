@@ -1,0 +1,19 @@
+#pragma once
+// Temporary names next to an output, so that it appears under its final name only when done.
+
+#include <filesystem>
+#include <string>
+
+namespace tumble::render::detail {
+
+/// The directory an output goes into ("." for a bare file name).
+std::filesystem::path output_directory(const std::filesystem::path& target);
+
+/// A hidden sibling of `target`: ".<name>.tmp-<pid>" in the same directory.
+std::filesystem::path temporary_sibling(const std::filesystem::path& target);
+
+/// Checks that the output's directory exists and is a directory; throws std::runtime_error
+/// naming it otherwise.
+void require_output_directory(const std::filesystem::path& target);
+
+}  // namespace tumble::render::detail

@@ -1,0 +1,174 @@
+#include "png_sequence_sink.hpp"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <thread>
+#include <vector>
+
+#include "frame_queue.hpp"
+#include "output_paths.hpp"
+#include "render/png_io.hpp"
+
+namespace tumble::render::detail {
+
+namespace {
+
+std::string frame_name(std::size_t index) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%06zu.png", index);
+  return name;
+}
+
+/// Whether every entry of an existing directory is a frame of an earlier sequence.
+bool holds_only_frames(const std::filesystem::path& directory) {
+  for (const auto& entry : std::filesystem::directory_iterator(directory)) {
+    const std::string name = entry.path().filename().string();
+    if (!entry.is_regular_file() || !name.starts_with("frame_") || !name.ends_with(".png")) {
+      return false;
+    }
+  }
+  return true;
+}
+
+class PngSequenceSink final : public ImageSink {
+ public:
+  PngSequenceSink(const std::filesystem::path& target, const SinkOptions& options)
+      : target_(target),
+        temporary_(temporary_sibling(target)),
+        options_(options),
+        queue_(options.queue_frames) {
+    // Check the destination before any frame is rendered.
+    require_output_directory(target_);
+    std::error_code error;
+    if (std::filesystem::exists(target_, error)) {
+      if (!std::filesystem::is_directory(target_, error)) {
+        throw std::runtime_error("cannot write PNG frames to '" + target_.string() +
+                                 "': it exists and is not a directory");
+      }
+      if (!holds_only_frames(target_)) {
+        throw std::runtime_error("refusing to replace '" + target_.string() +
+                                 "': it holds files other than frame_*.png");
+      }
+    }
+    std::filesystem::remove_all(temporary_, error);
+    if (!std::filesystem::create_directory(temporary_, error)) {
+      throw std::runtime_error("cannot write PNG frames to '" + target_.string() +
+                               "': cannot create a directory in '" +
+                               output_directory(target_).string() + "': " + error.message());
+    }
+    // Encoder threads.
+    const int threads = options.png_threads < 1 ? 1 : options.png_threads;
+    for (int i = 0; i < threads; ++i) workers_.emplace_back([this] { encode_loop(); });
+  }
+
+  ~PngSequenceSink() override {
+    if (!finished_) abort();
+  }
+
+  void write(const Image& frame) override {
+    if (frame.width != options_.width || frame.height != options_.height) {
+      throw std::invalid_argument("PNG sink '" + target_.string() + "': frame is " +
+                                  std::to_string(frame.width) + "x" + std::to_string(frame.height) +
+                                  ", expected " + std::to_string(options_.width) + "x" +
+                                  std::to_string(options_.height));
+    }
+    rethrow_failure();
+    if (finished_ || !queue_.push(frame, frames_)) {
+      throw std::runtime_error("PNG sink '" + target_.string() + "' is closed");
+    }
+    ++frames_;
+  }
+
+  void finish() override {
+    if (finished_) return;
+    // Drain the encoders, then swap the finished directory into place.
+    join_workers();
+    try {
+      rethrow_failure();
+      const std::filesystem::path old = temporary_.string() + "-old";
+      const bool replacing = std::filesystem::exists(target_);
+      if (replacing) std::filesystem::rename(target_, old);
+      std::filesystem::rename(temporary_, target_);
+      if (replacing) std::filesystem::remove_all(old);
+    } catch (const std::filesystem::filesystem_error& e) {
+      abort();
+      throw std::runtime_error("cannot move PNG frames into '" + target_.string() +
+                               "': " + e.code().message());
+    } catch (...) {
+      abort();
+      throw;
+    }
+    finished_ = true;
+  }
+
+  std::size_t frames() const override { return frames_; }
+
+ private:
+  void encode_loop() {
+    FrameQueue::Item item;
+    Image image;
+    image.width = options_.width;
+    image.height = options_.height;
+    while (queue_.pop(item)) {
+      image.rgba.swap(item.rgba);
+      try {
+        if (!failed()) write_png(temporary_ / frame_name(item.index), image, 1);
+      } catch (const std::exception& e) {
+        std::lock_guard lock(failure_mutex_);
+        if (failure_.empty()) failure_ = e.what();
+      }
+      queue_.recycle(std::move(image.rgba));
+      image.rgba = {};
+    }
+  }
+
+  bool failed() {
+    std::lock_guard lock(failure_mutex_);
+    return !failure_.empty();
+  }
+
+  void rethrow_failure() {
+    std::lock_guard lock(failure_mutex_);
+    if (!failure_.empty()) throw std::runtime_error(failure_);
+  }
+
+  void join_workers() {
+    queue_.close();
+    for (std::thread& worker : workers_) {
+      if (worker.joinable()) worker.join();
+    }
+  }
+
+  /// Stops the encoders and removes the temporary directory.
+  void abort() {
+    queue_.discard();
+    join_workers();
+    std::error_code ignored;
+    std::filesystem::remove_all(temporary_, ignored);
+    finished_ = true;
+  }
+
+  std::filesystem::path target_;
+  std::filesystem::path temporary_;
+  SinkOptions options_;
+  FrameQueue queue_;
+  std::vector<std::thread> workers_;
+  std::mutex failure_mutex_;
+  std::string failure_;
+  std::size_t frames_ = 0;
+  bool finished_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<ImageSink> open_png_sequence(const std::filesystem::path& directory,
+                                             const SinkOptions& options) {
+  return std::make_unique<PngSequenceSink>(directory, options);
+}
+
+}  // namespace tumble::render::detail

@@ -1,0 +1,70 @@
+#pragma once
+// The 3D part of a frame: background gradient, optional ground with a soft shadow, shaded
+// meshes and arrows (opaque, then translucent back to front), polylines and points.
+
+#include <vector>
+
+#include "gl_program.hpp"
+#include "gpu_mesh.hpp"
+#include "render/draw_list.hpp"
+#include "render/offscreen_context.hpp"
+
+namespace tumble::render::detail {
+
+class ScenePasses {
+ public:
+  /// Compiles the programs and builds the arrow shapes; needs the context current.
+  ScenePasses();
+  ~ScenePasses();
+  ScenePasses(const ScenePasses&) = delete;
+  ScenePasses& operator=(const ScenePasses&) = delete;
+
+  /// Draws everything but the overlays into the context's framebuffer. Throws
+  /// std::invalid_argument for a MeshId this renderer never returned.
+  void draw(const DrawList& frame, const std::vector<GpuMesh>& meshes, OffscreenContext& context);
+
+ private:
+  /// One shaded solid (a mesh instance or half an arrow) of the current frame.
+  struct Solid {
+    const GpuMesh* mesh;
+    Eigen::Matrix4f model;
+    Rgba colour;
+    float view_depth;  // distance along the view direction, to sort translucent solids
+  };
+
+  void collect_solids(const DrawList& frame, const std::vector<GpuMesh>& meshes,
+                      const Eigen::Matrix4f& view);
+  void draw_shadow_map(const DrawList& frame);
+  void draw_background(const SceneStyle& style);
+  void draw_ground(const DrawList& frame, int height);
+  void draw_solids(bool translucent);
+  void draw_lines_and_points(const DrawList& frame, int width, int height);
+
+  GlProgram background_program_;
+  GlProgram mesh_program_;
+  GlProgram shadow_program_;
+  GlProgram ground_program_;
+  GlProgram shadowed_ground_program_;
+  GlProgram line_program_;
+  GlProgram point_program_;
+  GpuMesh cylinder_;
+  GpuMesh cone_;
+  GLuint empty_vao_ = 0;
+  GLuint ground_vao_ = 0;
+  GLuint ground_buffer_ = 0;
+  GLuint stream_vao_ = 0;
+  GLuint stream_buffer_ = 0;
+  GLuint shadow_fbo_ = 0;
+  GLuint shadow_texture_ = 0;
+
+  // Per-frame state.
+  std::vector<Solid> solids_;
+  std::vector<float> stream_;
+  Eigen::Matrix4f view_projection_ = Eigen::Matrix4f::Identity();
+  Eigen::Matrix4f light_view_projection_ = Eigen::Matrix4f::Identity();
+  Eigen::Vector3f scene_centre_ = Eigen::Vector3f::Zero();
+  float scene_radius_ = 0.0f;
+  bool shadow_valid_ = false;
+};
+
+}  // namespace tumble::render::detail

@@ -1,0 +1,232 @@
+#include "render/image_sink.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <Eigen/Geometry>
+#include <cstdlib>
+
+#include "render/png_io.hpp"
+#include "render/renderer.hpp"
+#include "render_support.hpp"
+#include "support/run_command.hpp"
+
+namespace tumble::render {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::ThrowsMessage;
+
+constexpr int kWidth = 96;
+constexpr int kHeight = 64;
+constexpr int kFrames = 12;
+
+/// kFrames frames of a box turning about z.
+std::vector<Image> turning_box_frames(int width = kWidth, int height = kHeight) {
+  Renderer renderer({width, height, 1});
+  DrawList frame;
+  frame.camera.eye = {3.0f, -4.0f, 2.5f};
+  const MeshId box = renderer.upload(testing::box_mesh({0.7f, 0.4f, 0.3f}));
+  std::vector<Image> images;
+  for (int i = 0; i < kFrames; ++i) {
+    const Eigen::Affine3f pose(
+        Eigen::AngleAxisf(0.25f * static_cast<float>(i), Eigen::Vector3f::UnitZ()));
+    frame.meshes = {{box, pose.matrix(), {0.85f, 0.55f, 0.25f, 1.0f}}};
+    images.push_back(renderer.render(frame));
+  }
+  return images;
+}
+
+/// Names in a directory (to check that no temporary is left behind).
+std::vector<std::string> entries(const std::filesystem::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    names.push_back(entry.path().filename().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+SinkOptions options(int width = kWidth, int height = kHeight) {
+  SinkOptions o;
+  o.width = width;
+  o.height = height;
+  o.fps = 10.0;
+  return o;
+}
+
+TEST(ImageSink, KindFollowsTheName) {
+  EXPECT_EQ(sink_kind("frames/"), SinkKind::kPngSequence);
+  EXPECT_EQ(sink_kind("out.mp4"), SinkKind::kMp4);
+  EXPECT_EQ(sink_kind("a/b/OUT.WEBM"), SinkKind::kWebm);
+  EXPECT_EQ(sink_kind("x.gif"), SinkKind::kGif);
+  EXPECT_THAT([] { sink_kind("out.avi"); },
+              ThrowsMessage<std::invalid_argument>(HasSubstr("unknown output 'out.avi'")));
+}
+
+TEST(ImageSink, PngSequenceWritesEveryFrameExactly) {
+  const auto dir = tumble::testing::fresh_directory("png_sink");
+  const auto images = turning_box_frames();
+  {
+    auto sink = open_image_sink(dir.string() + "/frames/", options());
+    for (const Image& image : images) sink->write(image);
+    sink->finish();
+    EXPECT_EQ(sink->frames(), static_cast<std::size_t>(kFrames));
+  }
+  EXPECT_EQ(entries(dir), std::vector<std::string>{"frames"});
+  ASSERT_EQ(entries(dir / "frames").size(), static_cast<std::size_t>(kFrames));
+  for (int i = 0; i < kFrames; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%06d.png", i);
+    const Image back = read_png(dir / "frames" / name);
+    ASSERT_EQ(back.width, kWidth);
+    ASSERT_EQ(back.height, kHeight);
+    EXPECT_EQ(back.rgba, images[static_cast<std::size_t>(i)].rgba) << name;
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(ImageSink, UnfinishedPngSequenceLeavesNothing) {
+  const auto dir = tumble::testing::fresh_directory("png_abort");
+  const auto images = turning_box_frames();
+  {
+    auto sink = open_image_sink(dir / "frames/", options());
+    sink->write(images[0]);
+    sink->write(images[1]);
+  }
+  EXPECT_TRUE(entries(dir).empty());
+  std::filesystem::remove_all(dir);
+}
+
+/// ffprobe's "codec,width,height,frames" of the first video stream.
+std::string probe(const std::filesystem::path& file) {
+  const auto result = tumble::testing::run_command(
+      "ffprobe -v error -select_streams v:0 -count_frames -show_entries "
+      "stream=codec_name,width,height,nb_read_frames -of csv=p=0 '" +
+      file.string() + "'");
+  EXPECT_EQ(result.status, 0) << result.err;
+  std::string out = result.out;
+  while (!out.empty() && (out.back() == '\n' || out.back() == ',')) out.pop_back();
+  return out;
+}
+
+TEST(ImageSink, Mp4IsH264WithEveryFrameAndMatchesThePngs) {
+  const auto dir = tumble::testing::fresh_directory("mp4_sink");
+  const auto images = turning_box_frames();
+  auto sink = open_image_sink(dir / "out.mp4", options());
+  for (const Image& image : images) sink->write(image);
+  sink->finish();
+  EXPECT_EQ(entries(dir), std::vector<std::string>{"out.mp4"});
+  EXPECT_EQ(probe(dir / "out.mp4"), "h264,96,64,12");
+
+  // Decode frame 5 and compare with the rendered image (lossy yuv420p: small mean error).
+  const auto decoded = dir / "frame5.png";
+  const auto result = tumble::testing::run_command(
+      "ffmpeg -v error -y -i '" + (dir / "out.mp4").string() +
+      "' -vf 'select=eq(n\\,5)' -vframes 1 '" + decoded.string() + "'");
+  ASSERT_EQ(result.status, 0) << result.err;
+  const Image frame = read_png(decoded);
+  ASSERT_EQ(frame.width, kWidth);
+  const double error = testing::mean_difference(frame, images[5]);
+  EXPECT_LT(error, 4.0);
+  // ...and it is frame 5, not a neighbour.
+  EXPECT_LT(error, testing::mean_difference(frame, images[4]));
+  EXPECT_LT(error, testing::mean_difference(frame, images[6]));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(ImageSink, WebmAndGifHaveEveryFrame) {
+  const auto dir = tumble::testing::fresh_directory("webm_gif_sink");
+  const auto images = turning_box_frames();
+  for (const char* name : {"out.webm", "out.gif"}) {
+    auto sink = open_image_sink(dir / name, options());
+    for (const Image& image : images) sink->write(image);
+    sink->finish();
+  }
+  EXPECT_EQ(entries(dir), (std::vector<std::string>{"out.gif", "out.webm"}));
+  EXPECT_EQ(probe(dir / "out.webm"), "vp9,96,64,12");
+  EXPECT_EQ(probe(dir / "out.gif"), "gif,96,64,12");
+  std::filesystem::remove_all(dir);
+}
+
+TEST(ImageSink, UnfinishedVideoLeavesNothing) {
+  const auto dir = tumble::testing::fresh_directory("mp4_abort");
+  const auto images = turning_box_frames();
+  {
+    auto sink = open_image_sink(dir / "out.mp4", options());
+    for (const Image& image : images) sink->write(image);
+  }
+  EXPECT_TRUE(entries(dir).empty());
+  std::filesystem::remove_all(dir);
+}
+
+TEST(ImageSink, UnknownExtensionFailsBeforeRendering) {
+  EXPECT_THAT([] { open_image_sink("/tmp/out.avi", options()); },
+              ThrowsMessage<std::invalid_argument>(HasSubstr("unknown output '/tmp/out.avi'")));
+}
+
+TEST(ImageSink, MissingOrUnwritableDirectoryIsNamed) {
+  EXPECT_THAT([] { open_image_sink("/nonexistent/dir/out.mp4", options()); },
+              ThrowsMessage<std::runtime_error>(HasSubstr("'/nonexistent/dir' does not exist")));
+  EXPECT_THAT([] { open_image_sink("/nonexistent/dir/frames/", options()); },
+              ThrowsMessage<std::runtime_error>(HasSubstr("'/nonexistent/dir' does not exist")));
+  // An existing directory we may not write to (root may write anywhere but sysfs).
+  std::filesystem::path locked = "/sys";
+  if (::geteuid() != 0) {
+    locked = tumble::testing::fresh_directory("locked");
+    std::filesystem::permissions(
+        locked, std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
+  }
+  EXPECT_THAT([&] { open_image_sink(locked / "out.mp4", options()); },
+              ThrowsMessage<std::runtime_error>(HasSubstr("directory '" + locked.string() + "'")));
+  EXPECT_THAT([&] { open_image_sink(locked / "frames/", options()); },
+              ThrowsMessage<std::runtime_error>(HasSubstr("'" + locked.string() + "'")));
+  if (locked != "/sys") {
+    std::filesystem::permissions(locked, std::filesystem::perms::owner_all);
+    std::filesystem::remove_all(locked);
+  }
+}
+
+TEST(ImageSink, FfmpegFailureIsOneLineAndLeavesNoFile) {
+  // yuv420p needs even sizes: libx264 refuses 97x64 once the first frame arrives.
+  const auto dir = tumble::testing::fresh_directory("mp4_odd");
+  const auto images = turning_box_frames(97, 64);
+  auto sink = open_image_sink(dir / "out.mp4", options(97, 64));
+  EXPECT_THAT(
+      [&] {
+        for (const Image& image : images) sink->write(image);
+        sink->finish();
+      },
+      ThrowsMessage<std::runtime_error>(::testing::AllOf(HasSubstr("ffmpeg failed writing"),
+                                                         HasSubstr("width not divisible by 2"),
+                                                         ::testing::Not(HasSubstr("\n")))));
+  sink.reset();
+  EXPECT_TRUE(entries(dir).empty());
+  std::filesystem::remove_all(dir);
+}
+
+TEST(ImageSink, MissingFfmpegIsReportedAtOpen) {
+  const auto dir = tumble::testing::fresh_directory("no_ffmpeg");
+  const std::string path = std::getenv("PATH") ? std::getenv("PATH") : "";
+  ::setenv("PATH", "/nonexistent", 1);
+  EXPECT_THAT([&] { open_image_sink(dir / "out.mp4", options()); },
+              ThrowsMessage<std::runtime_error>(HasSubstr("ffmpeg not found on PATH")));
+  ::setenv("PATH", path.c_str(), 1);
+  EXPECT_TRUE(entries(dir).empty());
+  std::filesystem::remove_all(dir);
+}
+
+TEST(ImageSink, WrongFrameSizeIsRejected) {
+  const auto dir = tumble::testing::fresh_directory("wrong_size");
+  auto sink = open_image_sink(dir / "frames/", options());
+  Image small{8, 8, std::vector<std::uint8_t>(256, 0)};
+  EXPECT_THAT([&] { sink->write(small); },
+              ThrowsMessage<std::invalid_argument>(HasSubstr("frame is 8x8, expected 96x64")));
+  sink.reset();
+  EXPECT_TRUE(entries(dir).empty());
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace tumble::render
