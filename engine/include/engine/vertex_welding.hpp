@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <stdexcept>
 #include <thread>
@@ -42,10 +43,21 @@ Bits<Scalar> coordinate_bits(Scalar value) {
 
 template <typename Scalar>
 struct Record {
-  std::uint32_t hash;
   std::uint32_t index;
   std::array<Bits<Scalar>, 3> bits;
 };
+
+/// A 32-bit hash of a position's bits (multiply-xorshift rounds).
+template <typename Scalar>
+std::uint32_t position_hash(const std::array<Bits<Scalar>, 3>& bits) {
+  std::uint64_t h = 0x9e3779b97f4a7c15ull;
+  for (const auto b : bits) {
+    h ^= b;
+    h *= 0xbf58476d1ce4e5b9ull;
+    h ^= h >> 31;
+  }
+  return static_cast<std::uint32_t>((h * 0x94d049bb133111ebull) >> 32);
+}
 
 }  // namespace welding_detail
 
@@ -84,19 +96,11 @@ WeldMap weld_positions(std::size_t count, PositionOf position) {
     return std::pair{count * thread / threads, count * (thread + 1) / threads};
   };
 
-  std::vector<std::uint32_t> hashes(count);
   std::vector<std::vector<std::size_t>> counts(threads, std::vector<std::size_t>(partitions, 0));
   parallel([&](int thread) {
     const auto [first, last] = slice(thread);
     for (std::size_t i = first; i < last; ++i) {
-      std::uint64_t h = 0x9e3779b97f4a7c15ull;
-      for (const auto bits : bits_of(i)) {
-        h ^= bits;
-        h *= 0xbf58476d1ce4e5b9ull;
-        h ^= h >> 31;
-      }
-      hashes[i] = static_cast<std::uint32_t>((h * 0x94d049bb133111ebull) >> 32);
-      ++counts[thread][hashes[i] >> shift];
+      ++counts[thread][position_hash<Scalar>(bits_of(i)) >> shift];
     }
   });
   std::vector<std::size_t> start(partitions + 1, 0);
@@ -109,17 +113,21 @@ WeldMap weld_positions(std::size_t count, PositionOf position) {
     }
     start[part + 1] = offset;
   }
-  std::vector<Record<Scalar>> records(count);
+  // The large temporaries are left uninitialised: every element is written before it is read
+  // (value-initialising 60 MB of records cost more than the scatter itself). The hash is
+  // recomputed wherever it is needed: cheaper than storing and reloading it.
+  const auto records = std::make_unique_for_overwrite<Record<Scalar>[]>(count);
   parallel([&](int thread) {
     const auto [first, last] = slice(thread);
     std::vector<std::size_t>& next = fill[thread];
     for (std::size_t i = first; i < last; ++i) {
-      records[next[hashes[i] >> shift]++] = {hashes[i], static_cast<std::uint32_t>(i), bits_of(i)};
+      const auto bits = bits_of(i);
+      records[next[position_hash<Scalar>(bits) >> shift]++] = {static_cast<std::uint32_t>(i), bits};
     }
   });
 
   // Group each bucket; the first (lowest) index at a position represents it.
-  std::vector<std::uint32_t> representative(count);
+  const auto representative = std::make_unique_for_overwrite<std::uint32_t[]>(count);
   parallel([&](int thread) {
     constexpr std::uint32_t kEmpty = std::numeric_limits<std::uint32_t>::max();
     std::vector<std::uint32_t> table;
@@ -130,14 +138,15 @@ WeldMap weld_positions(std::size_t count, PositionOf position) {
       table.assign(slots, kEmpty);
       for (std::size_t r = begin; r < end; ++r) {
         const Record<Scalar>& record = records[r];
-        for (std::size_t slot = record.hash & (slots - 1);; slot = (slot + 1) & (slots - 1)) {
+        const std::uint32_t hash = position_hash<Scalar>(record.bits);
+        for (std::size_t slot = hash & (slots - 1);; slot = (slot + 1) & (slots - 1)) {
           if (table[slot] == kEmpty) {
             table[slot] = static_cast<std::uint32_t>(r);
             representative[record.index] = record.index;
             break;
           }
           const Record<Scalar>& held = records[table[slot]];
-          if (held.hash == record.hash && held.bits[0] == record.bits[0] &&
+          if (held.bits[0] == record.bits[0] &&
               held.bits[1] == record.bits[1] && held.bits[2] == record.bits[2]) {
             representative[record.index] = held.index;
             break;
