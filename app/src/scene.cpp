@@ -17,6 +17,7 @@
 #include "app/inspect_command.hpp"
 #include "app/strict_json.hpp"
 #include "engine/input_error.hpp"
+#include "engine/mesh_import.hpp"
 #include "engine/integrators.hpp"
 #include "engine/principal_frame.hpp"
 
@@ -339,7 +340,8 @@ SceneDescription parse_scene(const std::string& text, const std::filesystem::pat
   // Read the JSON (comments allowed; syntax errors by line and column).
   const json root = parse_strict_json(text, source);
   const Field top(root, "", source);
-  top.expect_object({"name", "duration", "dt", "integrator", "tolerance", "gravity", "bodies"});
+  top.expect_object(
+      {"name", "duration", "dt", "integrator", "tolerance", "gravity", "bodies", "render"});
 
   SceneDescription scene;
   scene.file = file;
@@ -361,6 +363,8 @@ SceneDescription parse_scene(const std::string& text, const std::filesystem::pat
   }
   if (auto tolerance = top.find("tolerance")) scene.tolerance = tolerance->positive();
   if (auto gravity = top.find("gravity")) scene.gravity = gravity->vector3();
+  // The render object is read by the render command (parse_render_settings), not here.
+  if (auto render = top.find("render")) scene.render = render->value();
 
   // Bodies, with unique names.
   const Field bodies = top.require("bodies", "a non-empty array of bodies");
@@ -410,8 +414,9 @@ SceneDescription load_scene(const std::filesystem::path& file) {
   return parse_scene(text.str(), file);
 }
 
-CompiledScene compile_scene(const SceneDescription& scene) {
+CompiledScene compile_scene(const SceneDescription& scene, bool keep_geometry) {
   CompiledScene out;
+  out.geometry.resize(scene.bodies.size());
   const std::string source = scene.file.string();
 
   // Settings.
@@ -441,6 +446,19 @@ CompiledScene compile_scene(const SceneDescription& scene) {
         throw InputError(where + ".mesh: " + error.what());
       }
       ++out.meshes_imported;
+      if (keep_geometry) {
+        // The drawing needs the triangles in the body frame: the file's axes, scaled, with the
+        // centre of mass at the origin. (Small demo meshes: reading twice is cheaper than
+        // keeping every mesh of every simulate run.)
+        engine::TriangleMesh shape = engine::import_mesh(*body.mesh);
+        for (Eigen::Vector3d& p : shape.positions) {
+          p = p * body.scale - report.mass_properties.center_of_mass;
+        }
+        if (report.flipped) {  // an inside-out file: draw it outward, as it was integrated
+          for (auto& t : shape.triangles) std::swap(t[1], t[2]);
+        }
+        out.geometry[i] = std::move(shape);
+      }
       model.mass = report.mass_properties.mass;
       inertia_com = report.mass_properties.inertia;
       mesh_principal = report.principal;

@@ -19,9 +19,11 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <nlohmann/json.hpp>
 
 #include "engine/rigid_body.hpp"
 #include "engine/simulation.hpp"
+#include "engine/triangle_mesh.hpp"
 
 namespace tumble::app {
 
@@ -67,6 +69,8 @@ struct SceneDescription {
   std::optional<double> tolerance;         ///< adaptive integrators only
   std::optional<Eigen::Vector3d> gravity;  ///< m/s^2, world
   std::vector<BodyDescription> bodies;
+  /// The scene's `render` object, kept as written for parse_render_settings (absent: defaults).
+  std::optional<nlohmann::json> render;
 };
 
 /// Parses and validates scene JSON text. `file` names the source in messages and anchors
@@ -100,10 +104,14 @@ struct CompiledScene {
   std::vector<engine::BodyState> initial;
   engine::SimulationSettings settings;
   std::size_t meshes_imported = 0;  ///< mesh files read (0 when every inertia is given)
+  /// Per body, its mesh in the body frame (the file's axes moved to the centre of mass,
+  /// metres), when the body has a mesh; kept only when compile_scene is asked for it.
+  std::vector<std::optional<engine::TriangleMesh>> geometry;
 };
 
 /// Imports meshes, computes mass properties about each rotation centre and builds the initial
 /// states. Mesh errors come back with the body's JSON path in front. Throws engine::InputError.
-CompiledScene compile_scene(const SceneDescription& scene);
+/// With `keep_geometry`, the meshes are kept for drawing (see CompiledScene::geometry).
+CompiledScene compile_scene(const SceneDescription& scene, bool keep_geometry = false);
 
 }  // namespace tumble::app

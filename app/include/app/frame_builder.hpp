@@ -1,0 +1,39 @@
+#pragma once
+/// @file Turns simulation state into the renderer's draw list: the bridge between engine and
+/// render (the only code that sees both).
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/render_settings.hpp"
+#include "app/scene.hpp"
+#include "engine/simulation.hpp"
+#include "render/draw_list.hpp"
+#include "render/renderer.hpp"
+
+namespace tumble::app {
+
+/// Builds one DrawList per video frame. Meshes are uploaded once, at construction; a body
+/// given only by its principal moments is drawn as the uniform box with the same moments and
+/// mass. History (trails, polhode, herpolhode, drift plots) is recorded by observe(), which
+/// must be called at every frame time from the start, rendered or not, so that a frame range
+/// of a render is identical to the same frames of a full render.
+class FrameBuilder {
+ public:
+  FrameBuilder(const SceneDescription& description, const CompiledScene& scene,
+               const RenderSettings& settings, render::Renderer& renderer);
+
+  /// Records the history items at the simulation's current time.
+  void observe(const engine::Simulation& simulation);
+
+  /// The draw list of the simulation's current state (after observe() at this time).
+  render::DrawList build(const engine::Simulation& simulation) const;
+
+ private:
+  struct Impl;
+  std::shared_ptr<Impl> impl_;
+};
+
+}  // namespace tumble::app
