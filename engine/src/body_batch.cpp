@@ -93,28 +93,24 @@ void step_semi_implicit_euler(FreeBodyBatch& batch, const Eigen::Vector3d& gravi
     const double oy = by + w * sy + (qz[i] * sx - qx[i] * sz);
     const double oz = bz + w * sz + (qx[i] * sy - qy[i] * sx);
 
-    // Turn: r = exp(h w / 2) = (cos(a/2), sin(a/2)/a * h w), a = h |w|, with the Taylor series
-    // of sin(a/2)/a below 1e-4 rad exactly as rotation_quaternion.
+    // Turn: r = exp(h w / 2) = (cos(a/2), sin(a/2)/a * h w), a = h |w|, with the same
+    // half-angle functions as rotation_quaternion.
     const double rvx = h * ox, rvy = h * oy, rvz = h * oz;
-    const double angle = std::sqrt(rvx * rvx + rvy * rvy + rvz * rvz);
-    const double half = 0.5 * angle;
-    const double safe_angle = angle < 1e-4 ? 1.0 : angle;
-    const double sinc_half =
-        angle < 1e-4 ? 0.5 - angle * angle / 48.0 : std::sin(half) / safe_angle;
-    const double rw = std::cos(half);
+    const HalfAngle turn = half_angle(0.25 * (rvx * rvx + rvy * rvy + rvz * rvz));
+    const double rw = turn.cos;
+    const double sinc_half = 0.5 * turn.sinc;
     const double rx = sinc_half * rvx, ry = sinc_half * rvy, rz = sinc_half * rvz;
 
-    // q <- r q (grouped as Eigen's SSE quaternion product groups it), normalised.
+    // q <- r q (grouped as Eigen's SSE quaternion product groups it), renormalised.
     const double nx = (rw * qx[i] + ry * qz[i]) - (rz * qy[i] - rx * w);
     const double ny = (rw * qy[i] + ry * w) + (rz * qx[i] - rx * qz[i]);
     const double nz = (rw * qz[i] - ry * qx[i]) + (rz * w + rx * qy[i]);
     const double nw = (rw * w - ry * qy[i]) - (rz * qz[i] + rx * qx[i]);
-    const double norm =
-        std::sqrt((nx * nx + nz * nz) + (ny * ny + nw * nw));  // as Eigen sums (x,y,z,w)
-    qw[i] = nw / norm;
-    qx[i] = nx / norm;
-    qy[i] = ny / norm;
-    qz[i] = nz / norm;
+    const Eigen::Quaterniond q = renormalized(Eigen::Quaterniond(nw, nx, ny, nz));
+    qw[i] = q.w();
+    qx[i] = q.x();
+    qy[i] = q.y();
+    qz[i] = q.z();
   }
 }
 

@@ -37,7 +37,7 @@ class ExplicitEuler final : public BodyStepper {
       s.position += h * s.velocity;
       s.velocity += h * r.acceleration;
     }
-    s.orientation = (s.orientation * rotation_quaternion(h * w_b)).normalized();
+    s.orientation = renormalized(s.orientation * rotation_quaternion(h * w_b));
     s.angular_momentum = s.orientation * J.cwiseProduct(w_b_new);
   }
 
@@ -58,7 +58,7 @@ class SemiImplicitEuler final : public BodyStepper {
     }
     if (!body_.pivoted) s.position += h * s.velocity;
     const Eigen::Vector3d omega = angular_velocity(body_, s);  // new L, old orientation
-    s.orientation = (rotation_quaternion(h * omega) * s.orientation).normalized();
+    s.orientation = renormalized(rotation_quaternion(h * omega) * s.orientation);
   }
 
  private:
@@ -78,7 +78,7 @@ class SeedSemiImplicit final : public BodyStepper {
       s.velocity += h * r.acceleration;
       s.position += h * s.velocity;
     }
-    s.orientation = (rotation_quaternion(h * omega) * s.orientation).normalized();
+    s.orientation = renormalized(rotation_quaternion(h * omega) * s.orientation);
     // Store the momentum that gives back this w in the new orientation: w stays frozen.
     s.angular_momentum =
         s.orientation * body_.moments.cwiseProduct(s.orientation.conjugate() * omega);
@@ -117,7 +117,7 @@ class ImplicitEuler final : public BodyStepper {
       s.velocity += h * r.acceleration;
       s.position += h * s.velocity;
     }
-    s.orientation = (s.orientation * rotation_quaternion(h * w)).normalized();
+    s.orientation = renormalized(s.orientation * rotation_quaternion(h * w));
     s.angular_momentum = s.orientation * J.cwiseProduct(w);
   }
 

@@ -103,16 +103,6 @@ Eigen::Quaterniond body_orientation(const BodyModel& body, const BodyState& stat
   return (state.orientation * body.principal_to_body.conjugate()).normalized();
 }
 
-Eigen::Quaterniond rotation_quaternion(const Eigen::Vector3d& rotation_vector) {
-  const double angle = rotation_vector.norm();
-  const double half = 0.5 * angle;
-  // sin(half)/angle, with its Taylor series near zero (no division by a tiny angle).
-  const double sinc_half =
-      angle < 1e-4 ? 0.5 - angle * angle / 48.0 : std::sin(half) / angle;
-  const Eigen::Vector3d v = sinc_half * rotation_vector;
-  return Eigen::Quaterniond(std::cos(half), v.x(), v.y(), v.z());
-}
-
 double orientation_angle(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
   const Eigen::Quaterniond d = a.conjugate() * b;
   return 2.0 * std::atan2(d.vec().norm(), std::abs(d.w()));

@@ -64,7 +64,7 @@ class Rk4 final : public BodyStepper {
     }
     s.angular_momentum += sixth * (k1.torque + 2.0 * (k2.torque + k3.torque) + k4.torque);
     s.orientation =
-        (rotation_quaternion(sixth * (u1 + 2.0 * (u2 + u3) + u4)) * s.orientation).normalized();
+        renormalized(rotation_quaternion(sixth * (u1 + 2.0 * (u2 + u3) + u4)) * s.orientation);
   }
 
  private:

@@ -87,7 +87,10 @@ TEST(FreeBodyBatch, MatchesScalarSemiImplicitEulerOverOneHundredSteps) {
     EXPECT_LT((b.velocity - (initial[i].velocity + steps * h * gravity)).norm(), 1e-12);
   }
   std::printf("[ batch ] worst relative difference to the scalar stepper: %.3g\n", worst);
-  EXPECT_LE(worst, 1e-14);
+  // Rounding only: the batch multiplies by stored inverse moments where the scalar stepper
+  // divides, and 100 steps of rotation amplify that to ~2e-14; a different scheme would differ
+  // at O(h) = 1e-3.
+  EXPECT_LE(worst, 1e-13);
   // Not vacuous: some bodies turned by radians, some by less than the Taylor threshold per step.
   EXPECT_GT(largest_turn, 1.0);
   EXPECT_LT(smallest_turn, 1e-2);

@@ -11,6 +11,7 @@
 /// Force terms are a list holding only what the scene asks for: a body without gravity,
 /// torque or spring evaluates no force code at all on its step path.
 
+#include <cmath>
 #include <string>
 #include <variant>
 #include <vector>
@@ -91,8 +92,38 @@ void update_pivot_kinematics(const BodyModel& body, BodyState& state);
 /// Orientation of the user's body frame (body to world) from the principal orientation.
 Eigen::Quaterniond body_orientation(const BodyModel& body, const BodyState& state);
 
+/// cos(x) and sin(x)/x of a half angle x, from x^2. Below |x| = 0.05 (every step that turns a
+/// body by less than 0.1 rad) a Taylor polynomial gives both to rounding (the first omitted
+/// terms are below 1e-20) with no square root or libm call; above it, std::cos and std::sin.
+struct HalfAngle {
+  double cos;
+  double sinc;  ///< sin(x) / x
+};
+inline HalfAngle half_angle(double x_squared) {
+  if (x_squared < 0.0025) {
+    const double y = x_squared;
+    return {1.0 - y / 2.0 * (1.0 - y / 12.0 * (1.0 - y / 30.0 * (1.0 - y / 56.0 * (1.0 - y / 90.0)))),
+            1.0 - y / 6.0 * (1.0 - y / 20.0 * (1.0 - y / 42.0 * (1.0 - y / 72.0)))};
+  }
+  const double x = std::sqrt(x_squared);
+  return {std::cos(x), std::sin(x) / x};
+}
+
 /// Unit quaternion exp(rotation_vector / 2): a turn by |v| about v.
-Eigen::Quaterniond rotation_quaternion(const Eigen::Vector3d& rotation_vector);
+inline Eigen::Quaterniond rotation_quaternion(const Eigen::Vector3d& rotation_vector) {
+  const HalfAngle h = half_angle(0.25 * rotation_vector.squaredNorm());
+  const Eigen::Vector3d v = (0.5 * h.sinc) * rotation_vector;
+  return Eigen::Quaterniond(h.cos, v.x(), v.y(), v.z());
+}
+
+/// q / |q| for a quaternion that is unit to within rounding (as after a product of unit
+/// quaternions): one Newton step for 1/sqrt(|q|^2) is then exact to rounding, without a square
+/// root or a division. Farther from unit length it falls back to a true normalisation.
+inline Eigen::Quaterniond renormalized(const Eigen::Quaterniond& q) {
+  const double norm_squared = q.squaredNorm();
+  if (!(std::abs(norm_squared - 1.0) < 1e-8)) return q.normalized();
+  return Eigen::Quaterniond(q.coeffs() * (1.5 - 0.5 * norm_squared));
+}
 
 /// Geodesic angle between two orientations, 2 atan2(|vec(a^* b)|, |w(a^* b)|) (handles q ~ -q;
 /// accurate for tiny angles, unlike acos).
