@@ -33,18 +33,22 @@ void kick(const BodyModel& body, BodyState& s, double half_step) {
 }
 
 /// Free rotation by the symmetric splitting R1(h/2) R2(h/2) R3(h) R2(h/2) R1(h/2).
-void split_rotation(const BodyModel& body, BodyState& s, double h) {
+void split_rotation(const Eigen::Vector3d& inverse_moments, BodyState& s, double h) {
   Eigen::Vector3d momentum = s.orientation.conjugate() * s.angular_momentum;  // body frame
-  Eigen::Quaterniond q = s.orientation;
+  Eigen::Vector4d q(s.orientation.w(), s.orientation.x(), s.orientation.y(), s.orientation.z());
   const auto rotate_about = [&](int axis, double t) {
     // Body turns by +angle about the axis; its body-frame momentum by -angle.
-    const double half = 0.5 * t * momentum[axis] / body.moments[axis];
+    const double half = 0.5 * t * momentum[axis] * inverse_moments[axis];
     const HalfAngle f = half_angle(half * half);
     const double c = f.cos, sn = half * f.sinc;
-    Eigen::Quaterniond turn(c, 0.0, 0.0, 0.0);
-    turn.vec()[axis] = sn;
-    q = q * turn;
-    const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+    // q <- q (c, sn e_axis): with a, b the next axes, w' = c w - sn q_axis,
+    // q_axis' = c q_axis + sn w, q_a' = c q_a + sn q_b, q_b' = c q_b - sn q_a (8 products).
+    const int i = axis + 1, a = (axis + 1) % 3, b = (axis + 2) % 3;
+    const double w = q[0], qi = q[i], qa = q[a + 1], qb = q[b + 1];
+    q[0] = c * w - sn * qi;
+    q[i] = c * qi + sn * w;
+    q[a + 1] = c * qa + sn * qb;
+    q[b + 1] = c * qb - sn * qa;
     const double cos_full = c * c - sn * sn, sin_full = 2.0 * sn * c;
     const double ma = momentum[a], mb = momentum[b];
     momentum[a] = cos_full * ma + sin_full * mb;
@@ -55,12 +59,13 @@ void split_rotation(const BodyModel& body, BodyState& s, double h) {
   rotate_about(2, h);
   rotate_about(1, 0.5 * h);
   rotate_about(0, 0.5 * h);
-  s.orientation = renormalized(q);
+  s.orientation = renormalized(Eigen::Quaterniond(q[0], q[1], q[2], q[3]));
 }
 
 class Splitting final : public BodyStepper {
  public:
-  Splitting(const BodyModel& body, int order) : body_(body), order_(order) {}
+  Splitting(const BodyModel& body, int order)
+      : body_(body), inverse_moments_(body.moments.cwiseInverse()), order_(order) {}
   void step(BodyState& s, double, double h) override {
     if (order_ == 2) {
       second_order(s, h);
@@ -79,11 +84,12 @@ class Splitting final : public BodyStepper {
   void second_order(BodyState& s, double h) const {
     kick(body_, s, 0.5 * h);
     if (!body_.pivoted) s.position += h * s.velocity;
-    split_rotation(body_, s, h);
+    split_rotation(inverse_moments_, s, h);
     kick(body_, s, 0.5 * h);
   }
 
   const BodyModel& body_;
+  Eigen::Vector3d inverse_moments_;
   int order_;
 };
 
