@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/inspect_command.hpp"
+#include "app/json_field.hpp"
 #include "app/strict_json.hpp"
 #include "engine/input_error.hpp"
 #include "engine/mesh_import.hpp"
@@ -27,138 +28,14 @@ namespace {
 using engine::InputError;
 using nlohmann::json;
 
-/// Shortest text that reads back as the same double ("inf", "-inf", "nan" for the rest).
-std::string number_text(double value) {
-  if (std::isnan(value)) return "nan";
-  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, result.ptr);
+using Field = JsonField;
+
+VectorFrame parse_frame(const Field& field) {
+  const std::string text = field.string();
+  if (text == "world") return VectorFrame::kWorld;
+  if (text == "body") return VectorFrame::kBody;
+  field.fail("expected \"world\" or \"body\", got \"" + text + "\"");
 }
-
-/// What a JSON value is, for "expected X, got Y".
-std::string describe(const json& value) {
-  switch (value.type()) {
-    case json::value_t::null:
-      return "null";
-    case json::value_t::boolean:
-      return value.get<bool>() ? "true" : "false";
-    case json::value_t::string:
-      return "the string \"" + value.get<std::string>() + "\"";
-    case json::value_t::array:
-      return "an array of " + std::to_string(value.size());
-    case json::value_t::object:
-      return "an object";
-    case json::value_t::number_integer:
-    case json::value_t::number_unsigned:
-    case json::value_t::number_float:
-      return number_text(value.get<double>());
-    default:
-      return "an unsupported value";
-  }
-}
-
-/// One value of the scene file and where it sits, so every message can name both.
-class Field {
- public:
-  Field(const json& value, std::string path, const std::string& file)
-      : value_(value), path_(std::move(path)), file_(file) {}
-
-  const json& value() const { return value_; }
-  const std::string& path() const { return path_; }
-
-  /// Throws "FILE: PATH: what".
-  [[noreturn]] void fail(const std::string& what) const {
-    throw InputError(file_ + ": " + (path_.empty() ? std::string("(top level)") : path_) + ": " +
-                     what);
-  }
-
-  std::string child_path(std::string_view key) const {
-    return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
-  }
-
-  /// The object's member `key`, or nothing when absent.
-  std::optional<Field> find(std::string_view key) const {
-    const auto it = value_.find(key);
-    if (it == value_.end()) return std::nullopt;
-    return Field(*it, child_path(key), file_);
-  }
-
-  /// The object's member `key`; `expected` says what it should be when it is missing.
-  Field require(std::string_view key, const std::string& expected) const {
-    if (auto found = find(key)) return *found;
-    throw InputError(file_ + ": " + child_path(key) + ": missing; expected " + expected);
-  }
-
-  Field element(std::size_t index) const {
-    return Field(value_[index], path_ + "[" + std::to_string(index) + "]", file_);
-  }
-
-  /// Checks this is an object whose keys are all in `allowed`.
-  void expect_object(std::initializer_list<std::string_view> allowed) const {
-    if (!value_.is_object()) fail("expected an object, got " + describe(value_));
-    for (const auto& [key, member] : value_.items()) {
-      bool known = false;
-      for (std::string_view name : allowed) known = known || key == name;
-      if (known) continue;
-      std::string names;
-      for (std::string_view name : allowed)
-        names += (names.empty() ? "" : ", ") + std::string(name);
-      throw InputError(file_ + ": " + child_path(key) + ": unknown key; expected one of: " + names);
-    }
-  }
-
-  double number() const {
-    if (!value_.is_number()) fail("expected a number, got " + describe(value_));
-    const double result = value_.get<double>();
-    if (!std::isfinite(result)) {
-      fail("expected a finite number, got " + number_text(result) +
-           " (JSON numbers beyond +-1.8e308 read as infinity)");
-    }
-    return result;
-  }
-
-  double positive() const {
-    const double result = number();
-    if (!(result > 0.0)) fail("expected a positive number, got " + number_text(result));
-    return result;
-  }
-
-  double non_negative() const {
-    const double result = number();
-    if (result < 0.0) fail("expected a number >= 0, got " + number_text(result));
-    return result;
-  }
-
-  std::string string() const {
-    if (!value_.is_string()) fail("expected a string, got " + describe(value_));
-    return value_.get<std::string>();
-  }
-
-  /// A JSON array of exactly `size` entries.
-  void expect_array(std::size_t size, const std::string& what) const {
-    if (!value_.is_array() || value_.size() != size) {
-      fail("expected " + what + ", got " + describe(value_));
-    }
-  }
-
-  Eigen::Vector3d vector3() const {
-    expect_array(3, "an array of 3 finite numbers [x, y, z]");
-    return {element(0).number(), element(1).number(), element(2).number()};
-  }
-
-  VectorFrame frame() const {
-    const std::string text = string();
-    if (text == "world") return VectorFrame::kWorld;
-    if (text == "body") return VectorFrame::kBody;
-    fail("expected \"world\" or \"body\", got \"" + text + "\"");
-  }
-
- private:
-  const json& value_;
-  std::string path_;
-  const std::string& file_;
-};
 
 /// "[a, b, c]" for messages.
 std::string vector_text(const Eigen::Vector3d& v) {
@@ -310,7 +187,7 @@ BodyDescription parse_body(const Field& field, std::size_t index,
   if (auto omega = field.find("angular_velocity")) body.angular_velocity = omega->vector3();
   if (auto frame = field.find("angular_velocity_frame")) {
     if (!field.find("angular_velocity")) frame->fail("given without \"angular_velocity\"");
-    body.angular_velocity_frame = frame->frame();
+    body.angular_velocity_frame = parse_frame(*frame);
   }
   if (auto pivot = field.find("pivot")) body.pivot = pivot->vector3();
   if (auto velocity = field.find("velocity")) {
@@ -326,7 +203,7 @@ BodyDescription parse_body(const Field& field, std::size_t index,
   if (auto torque = field.find("torque")) body.torque = torque->vector3();
   if (auto frame = field.find("torque_frame")) {
     if (!body.torque) frame->fail("given without \"torque\"");
-    body.torque_frame = frame->frame();
+    body.torque_frame = parse_frame(*frame);
   }
   if (auto spring = field.find("spring")) body.spring = parse_spring(*spring);
   return body;

@@ -36,4 +36,10 @@ class FrameBuilder {
   std::shared_ptr<Impl> impl_;
 };
 
+/// Edge lengths (m) of the uniform box of `mass` whose principal moments about its centre are
+/// `moments` (kg m^2): from I1 = m (b^2 + c^2) / 12 etc., a^2 = 6 (I2 + I3 - I1) / m. A side
+/// that the moments make zero (a flat body, I1 + I2 = I3) is kept at a thousandth of the
+/// longest so that the box can be drawn.
+Eigen::Vector3d equivalent_box_size(double mass, const Eigen::Vector3d& moments);
+
 }  // namespace tumble::app
