@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/inspect_command.hpp"
+#include "app/render_command.hpp"
 #include "app/simulate_command.hpp"
 #include "engine/input_error.hpp"
 
@@ -17,6 +18,8 @@ int main(int argc, char** argv) {
   CLI::App& inspect = tumble::app::add_inspect_command(cli, inspect_options);
   tumble::app::SimulateOptions simulate_options;
   CLI::App& simulate = tumble::app::add_simulate_command(cli, simulate_options);
+  tumble::app::RenderOptions render_options;
+  CLI::App& render = tumble::app::add_render_command(cli, render_options);
 
   try {
     cli.parse(argc, argv);
@@ -29,6 +32,7 @@ int main(int argc, char** argv) {
     if (simulate.parsed()) {
       return tumble::app::run_simulate(simulate_options, std::cout, std::cerr);
     }
+    if (render.parsed()) return tumble::app::run_render(render_options, std::cout, std::cerr);
   } catch (const tumble::engine::InputError& error) {
     std::cerr << "tumble: error: " << error.what() << "\n";
     return 1;

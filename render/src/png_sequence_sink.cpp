@@ -78,7 +78,7 @@ class PngSequenceSink final : public ImageSink {
                                   std::to_string(options_.height));
     }
     rethrow_failure();
-    if (finished_ || !queue_.push(frame, frames_)) {
+    if (finished_ || !queue_.push(frame, options_.first_index + frames_)) {
       throw std::runtime_error("PNG sink '" + target_.string() + "' is closed");
     }
     ++frames_;

@@ -27,6 +27,9 @@ struct SinkOptions {
   double fps = 30.0;
   int png_threads = 2;           ///< PNG encoder threads (PNG sequences only)
   std::size_t queue_frames = 4;  ///< frames buffered between the render thread and the encoder
+  /// Number of the first frame in a PNG sequence's file names (a frame range of a longer
+  /// render keeps its absolute numbers: frame_000120.png ...).
+  std::size_t first_index = 0;
 };
 
 /// Consumes frames in order; see the file comment for the naming rules.
