@@ -30,7 +30,7 @@ Eigen::Vector3d dexp_inverse(const Eigen::Vector3d& theta, const Eigen::Vector3d
 
 class Rk4 final : public BodyStepper {
  public:
-  explicit Rk4(const BodyModel& body) : body_(body) {}
+  explicit Rk4(const BodyModel& body) : body_(body), inverse_moments_(body.moments.cwiseInverse()) {}
   void step(BodyState& s, double, double h) override {
     const bool moves = !body_.pivoted;
     BodyState stage = s;
@@ -42,19 +42,19 @@ class Rk4 final : public BodyStepper {
       stage.angular_momentum = s.angular_momentum + fraction * h * k.torque;
       stage.orientation = rotation_quaternion(theta) * s.orientation;
     };
-    const Rates k1 = rates(body_, s);
+    const Rates k1 = rates(body_, s, inverse_moments_);
     const Eigen::Vector3d u1 = k1.omega;
 
     at(0.5, k1, 0.5 * h * u1);
-    const Rates k2 = rates(body_, stage);
+    const Rates k2 = rates(body_, stage, inverse_moments_);
     const Eigen::Vector3d u2 = dexp_inverse(0.5 * h * u1, k2.omega);
 
     at(0.5, k2, 0.5 * h * u2);
-    const Rates k3 = rates(body_, stage);
+    const Rates k3 = rates(body_, stage, inverse_moments_);
     const Eigen::Vector3d u3 = dexp_inverse(0.5 * h * u2, k3.omega);
 
     at(1.0, k3, h * u3);
-    const Rates k4 = rates(body_, stage);
+    const Rates k4 = rates(body_, stage, inverse_moments_);
     const Eigen::Vector3d u4 = dexp_inverse(h * u3, k4.omega);
 
     const double sixth = h / 6.0;
@@ -69,6 +69,7 @@ class Rk4 final : public BodyStepper {
 
  private:
   const BodyModel& body_;
+  Eigen::Vector3d inverse_moments_;
 };
 
 /// (x, v, q, L) as 13 numbers, q stored w, x, y, z.

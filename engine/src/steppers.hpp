@@ -17,8 +17,13 @@ struct Rates {
 };
 
 /// The right-hand side at `state`; no force code runs for a body without force terms.
-inline Rates rates(const BodyModel& body, const BodyState& state) {
-  Rates out{state.velocity, Eigen::Vector3d::Zero(), angular_velocity(body, state),
+/// `inverse_moments` (1 / moments, kept by steppers that evaluate this often) saves the
+/// divisions of angular_velocity().
+inline Rates rates(const BodyModel& body, const BodyState& state,
+                   const Eigen::Vector3d& inverse_moments) {
+  const Eigen::Vector3d momentum_body = state.orientation.conjugate() * state.angular_momentum;
+  Rates out{state.velocity, Eigen::Vector3d::Zero(),
+            state.orientation * inverse_moments.cwiseProduct(momentum_body),
             Eigen::Vector3d::Zero()};
   if (!body.forces.empty()) {
     const Wrench w = wrench(body, state, out.omega);
@@ -26,6 +31,10 @@ inline Rates rates(const BodyModel& body, const BodyState& state) {
     out.torque = w.torque;
   }
   return out;
+}
+
+inline Rates rates(const BodyModel& body, const BodyState& state) {
+  return rates(body, state, body.moments.cwiseInverse());
 }
 
 std::unique_ptr<BodyStepper> make_explicit_euler(const BodyModel& body);
