@@ -47,14 +47,6 @@ std::string number_text(double value, const char* format = "%.6g") {
   return buffer;
 }
 
-/// A command-line override: positive and finite.
-double checked_option(double value, const char* option) {
-  if (!(std::isfinite(value) && value > 0.0)) {
-    throw InputError(std::string(option) + ": expected a positive finite number, got " +
-                     number_text(value, "%.17g"));
-  }
-  return value;
-}
 
 /// Digits only (no sign, no spaces), at most 12 of them.
 std::optional<std::size_t> whole_number(std::string_view text) {
@@ -69,19 +61,9 @@ std::optional<std::size_t> whole_number(std::string_view text) {
 
 /// Applies --integrator and --dt to the scene and checks them.
 void apply_simulation_options(const RenderOptions& options, SceneDescription& scene) {
-  if (options.integrator) {
-    if (!engine::integrator_from_name(*options.integrator)) {
-      std::string names;
-      for (const auto& info : engine::integrator_catalog()) {
-        names += (names.empty() ? "" : ", ") + info.name;
-      }
-      throw InputError("--integrator: unknown integrator \"" + *options.integrator +
-                       "\"; expected one of: " + names);
-    }
-    scene.integrator = *options.integrator;
-  }
+  if (options.integrator) override_integrator(scene, *options.integrator);
   if (options.dt) {
-    scene.dt = checked_option(*options.dt, "--dt");
+    scene.dt = positive_option(*options.dt, "--dt");
     if (auto problem = step_problem(scene.dt, scene.duration)) {
       throw InputError("--dt: " + *problem);
     }
@@ -95,8 +77,8 @@ RenderSettings render_settings(const RenderOptions& options, const SceneDescript
   RenderSettings settings = parse_render_settings(
       scene.render ? *scene.render : nlohmann::json::object(), scene.file.string(), body_names);
   if (options.size) std::tie(settings.width, settings.height) = parse_frame_size(*options.size);
-  if (options.fps) settings.fps = checked_option(*options.fps, "--fps");
-  if (options.time_scale) settings.time_scale = checked_option(*options.time_scale, "--time-scale");
+  if (options.fps) settings.fps = positive_option(*options.fps, "--fps");
+  if (options.time_scale) settings.time_scale = positive_option(*options.time_scale, "--time-scale");
   if (options.antialiasing) {
     if (*options.antialiasing < 1 || *options.antialiasing > 16) {
       throw InputError("--aa: expected samples per pixel from 1 to 16, got " +

@@ -44,15 +44,6 @@ std::string vector_text(const Eigen::Vector3d& v) {
   return text.append("]");
 }
 
-/// The list of integrator names for messages.
-std::string integrator_names() {
-  std::string names;
-  for (const engine::IntegratorInfo& info : engine::integrator_catalog()) {
-    names += (names.empty() ? "" : ", ") + info.name;
-  }
-  return names;
-}
-
 Eigen::Quaterniond parse_quaternion(const Field& field) {
   field.expect_array(4, "a quaternion [w, x, y, z] of 4 finite numbers");
   const Eigen::Quaterniond q(field.element(0).number(), field.element(1).number(),
@@ -413,6 +404,30 @@ CompiledScene compile_scene(const SceneDescription& scene, bool keep_geometry) {
     out.initial.push_back(state);
   }
   return out;
+}
+
+std::string integrator_names() {
+  std::string names;
+  for (const engine::IntegratorInfo& info : engine::integrator_catalog()) {
+    names += (names.empty() ? "" : ", ") + info.name;
+  }
+  return names;
+}
+
+void override_integrator(SceneDescription& scene, const std::string& name) {
+  if (!engine::integrator_from_name(name)) {
+    throw InputError("--integrator: unknown integrator \"" + name +
+                     "\"; expected one of: " + integrator_names());
+  }
+  scene.integrator = name;
+}
+
+double positive_option(double value, const char* option) {
+  if (!(std::isfinite(value) && value > 0.0)) {
+    throw InputError(std::string(option) + ": expected a positive finite number, got " +
+                     number_text(value));
+  }
+  return value;
 }
 
 }  // namespace tumble::app

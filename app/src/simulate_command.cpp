@@ -27,31 +27,13 @@ std::string number_text(double value, const char* format = "%.6g") {
   return buffer;
 }
 
-/// A command-line override: positive and finite.
-double checked_option(double value, const char* option) {
-  if (!(std::isfinite(value) && value > 0.0)) {
-    throw InputError(std::string(option) + ": expected a positive finite number, got " +
-                     number_text(value, "%.17g"));
-  }
-  return value;
-}
 
 /// Applies the command-line options on top of the scene and checks them all.
 void apply_options(const SimulateOptions& options, SceneDescription& scene) {
-  if (options.integrator) {
-    if (!engine::integrator_from_name(*options.integrator)) {
-      std::string names;
-      for (const auto& info : engine::integrator_catalog()) {
-        names += (names.empty() ? "" : ", ") + info.name;
-      }
-      throw InputError("--integrator: unknown integrator \"" + *options.integrator +
-                       "\"; expected one of: " + names);
-    }
-    scene.integrator = *options.integrator;
-  }
-  if (options.dt) scene.dt = checked_option(*options.dt, "--dt");
-  if (options.duration) scene.duration = checked_option(*options.duration, "--duration");
-  if (options.tolerance) scene.tolerance = checked_option(*options.tolerance, "--tolerance");
+  if (options.integrator) override_integrator(scene, *options.integrator);
+  if (options.dt) scene.dt = positive_option(*options.dt, "--dt");
+  if (options.duration) scene.duration = positive_option(*options.duration, "--duration");
+  if (options.tolerance) scene.tolerance = positive_option(*options.tolerance, "--tolerance");
   if (auto problem = step_problem(scene.dt, scene.duration)) {
     throw InputError((options.dt ? std::string("--dt") : scene.file.string() + ": dt") + ": " +
                      *problem);
@@ -59,7 +41,7 @@ void apply_options(const SimulateOptions& options, SceneDescription& scene) {
   if (options.every < 1) {
     throw InputError("--every: expected a whole number >= 1, got " + std::to_string(options.every));
   }
-  if (options.blowup_factor && !(checked_option(*options.blowup_factor, "--blowup-factor") > 1.0)) {
+  if (options.blowup_factor && !(positive_option(*options.blowup_factor, "--blowup-factor") > 1.0)) {
     throw InputError("--blowup-factor: expected a growth factor > 1, got " +
                      number_text(*options.blowup_factor, "%.17g"));
   }

@@ -95,6 +95,14 @@ inline constexpr double kMaxSteps = 1e12;
 /// the duration, or more than kMaxSteps steps. Nothing when it is fine.
 std::optional<std::string> step_problem(double dt, double duration);
 
+/// The integrator names, comma-separated, for messages.
+std::string integrator_names();
+
+/// Command-line overrides shared by the commands. Each throws engine::InputError naming the
+/// option: `--integrator` must name a known integrator; numbers must be positive and finite.
+void override_integrator(SceneDescription& scene, const std::string& name);
+double positive_option(double value, const char* option);
+
 /// Reads `file` and parses it (see parse_scene).
 SceneDescription load_scene(const std::filesystem::path& file);
 
