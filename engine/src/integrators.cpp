@@ -4,13 +4,16 @@
 // - explicit-euler: everything from the old state, the rotation in the classic body-frame form
 //   w_b += h J^-1 (tau_b - w_b x J w_b), which is what makes it blow up on gyroscopic
 //   stiffness (the (w2, w3) rotation of a fast needle is amplified by sqrt(1 + (h w1)^2));
-// - semi-implicit-euler: the founding note's scheme made correct (symplectic Euler): kick v and
-//   world L with the old forces, then drift x and turn q with the new v and w = I_w^-1 L_new;
-//   world L is exact without torques;
+// - semi-implicit-euler: the founding note's scheme made correct: kick v and world L with the
+//   old forces, then drift x and turn q with the new v and w = I_w^-1 L_new (old orientation).
+//   Symplectic Euler in translation; the rotational energy depends on both q and L, so in
+//   rotation this is a first-order Lie-Euler step whose energy drifts, but world L is exact
+//   without torques;
 // - seed-semi-implicit: the note's angular update as written, w_{n+1} = w_n + h I_w^-1 tau,
 //   with no gyroscopic term: world w is frozen without torques (order 0, for comparison only);
 // - implicit-euler: backward Euler on the gyroscopic term in the body frame, solved by Newton
-//   (Catto, "Numerical methods", GDC 2015): unconditionally stable, damps tumbling.
+//   (Catto, "Numerical methods", GDC 2015): unconditionally stable, damps tumbling. Translation
+//   is symplectic Euler, as in semi-implicit-euler (so the two agree on a pure spring).
 #include <cmath>
 #include <stdexcept>
 
@@ -148,11 +151,13 @@ const std::vector<IntegratorInfo>& integrator_catalog() {
       {K::kExplicitEuler, "explicit-euler", 1, false, false,
        "everything from the old state; energy grows, blows up on fast or extreme-ratio spins"},
       {K::kSemiImplicitEuler, "semi-implicit-euler", 1, false, false,
-       "the founding note made correct (symplectic Euler on (v, x) and (L, q)); world L exact"},
+       "the founding note made correct: kick v and L, drift x and turn q with the new w; "
+       "symplectic in translation, first order in rotation; world L exact"},
       {K::kSeedSemiImplicit, "seed-semi-implicit", 0, false, false,
        "the note as written, no gyroscopic term: no flip, no precession; comparison only"},
       {K::kImplicitEuler, "implicit-euler", 1, false, false,
-       "backward Euler on the gyroscopic term (Newton); unconditionally stable, damps tumbling"},
+       "backward Euler on the gyroscopic term (Newton), symplectic Euler in translation; "
+       "stable, damps tumbling"},
       {K::kRk4, "rk4", 4, false, false,
        "classical RK4, Munthe-Kaas form on the rotation group (4th order in orientation too)"},
       {K::kMidpoint, "midpoint", 2, false, false,
