@@ -3,9 +3,11 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/bench_command.hpp"
 #include "app/inspect_command.hpp"
 #include "app/render_command.hpp"
 #include "app/simulate_command.hpp"
+#include "app/stability_command.hpp"
 #include "engine/input_error.hpp"
 
 int main(int argc, char** argv) {
@@ -20,6 +22,10 @@ int main(int argc, char** argv) {
   CLI::App& simulate = tumble::app::add_simulate_command(cli, simulate_options);
   tumble::app::RenderOptions render_options;
   CLI::App& render = tumble::app::add_render_command(cli, render_options);
+  tumble::app::BenchOptions bench_options;
+  CLI::App& bench = tumble::app::add_bench_command(cli, bench_options);
+  tumble::app::StabilityOptions stability_options;
+  CLI::App& stability = tumble::app::add_stability_command(cli, stability_options);
 
   try {
     cli.parse(argc, argv);
@@ -33,6 +39,10 @@ int main(int argc, char** argv) {
       return tumble::app::run_simulate(simulate_options, std::cout, std::cerr);
     }
     if (render.parsed()) return tumble::app::run_render(render_options, std::cout, std::cerr);
+    if (bench.parsed()) return tumble::app::run_bench(bench_options, std::cout, std::cerr);
+    if (stability.parsed()) {
+      return tumble::app::run_stability(stability_options, std::cout, std::cerr);
+    }
   } catch (const tumble::engine::InputError& error) {
     std::cerr << "tumble: error: " << error.what() << "\n";
     return 1;
