@@ -1,6 +1,8 @@
 // `tumble bench`: options, validation, the output directory and the run of every case.
 #include "app/bench_command.hpp"
 
+#include "app/option_lists.hpp"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -39,18 +41,6 @@ std::string number_text(double value, const char* format = "%.6g") {
   return buffer;
 }
 
-std::vector<std::string> split_list(const std::string& text) {
-  std::vector<std::string> items;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    const auto first = item.find_first_not_of(" \t");
-    const auto last = item.find_last_not_of(" \t");
-    items.push_back(first == std::string::npos ? "" : item.substr(first, last - first + 1));
-  }
-  return items;
-}
-
 /// A whole number in [minimum, ...] or an error naming the option.
 long long parse_count(const std::string& text, const char* option, long long minimum) {
   std::size_t used = 0;
@@ -67,25 +57,9 @@ long long parse_count(const std::string& text, const char* option, long long min
   return value;
 }
 
-/// A positive finite number or an error naming the option.
-double parse_positive(const std::string& text, const char* option) {
-  std::size_t used = 0;
-  double value = 0.0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size()) {
-    throw InputError(std::string(option) + ": expected a positive number, got '" + text + "'");
-  }
-  return positive_option(value, option);
-}
-
-std::vector<double> parse_positive_list(const std::string& text, const char* option) {
-  std::vector<double> values;
-  for (const std::string& item : split_list(text)) values.push_back(parse_positive(item, option));
-  if (values.empty()) throw InputError(std::string(option) + ": expected a non-empty list");
+/// A list of positive numbers, largest first, each once.
+std::vector<double> descending_positive_list(const std::string& text, const char* option) {
+  std::vector<double> values = parse_positive_list(text, option);
   std::sort(values.begin(), values.end(), std::greater<>());
   values.erase(std::unique(values.begin(), values.end()), values.end());
   return values;
@@ -100,17 +74,11 @@ std::vector<const engine::IntegratorInfo*> chosen_integrators(const BenchOptions
     }
     return chosen;
   }
-  for (const std::string& name : split_list(*options.integrators)) {
-    const auto kind = engine::integrator_from_name(name);
-    if (!kind) {
-      throw InputError("--integrators: unknown integrator '" + name + "' (expected one of " +
-                       integrator_names() + ")");
-    }
-    if (*kind == engine::IntegratorKind::kExact) {
+  chosen = parse_integrator_list(*options.integrators, "--integrators");
+  for (const engine::IntegratorInfo* info : chosen) {
+    if (info->kind == engine::IntegratorKind::kExact) {
       throw InputError("--integrators: 'exact' is the reference, not a benchmarked integrator");
     }
-    const auto& info = engine::integrator_info(*kind);
-    if (std::find(chosen.begin(), chosen.end(), &info) == chosen.end()) chosen.push_back(&info);
   }
   if (chosen.empty()) throw InputError("--integrators: expected a non-empty list");
   return chosen;
@@ -146,11 +114,17 @@ void plan(const BenchOptions& options, std::vector<BenchScene>& scenes,
     throw InputError("--tolerances: no adaptive integrator chosen (only dopri takes one)");
   }
   std::optional<std::vector<double>> dts;
-  if (options.dts) dts = parse_positive_list(*options.dts, "--dts");
+  if (options.dts) dts = descending_positive_list(*options.dts, "--dts");
   std::vector<double> tolerances(std::begin(kDefaultTolerances), std::end(kDefaultTolerances));
-  if (options.tolerances) tolerances = parse_positive_list(*options.tolerances, "--tolerances");
+  if (options.tolerances) tolerances = descending_positive_list(*options.tolerances, "--tolerances");
   std::optional<double> duration;
-  if (options.duration) duration = parse_positive(*options.duration, "--duration");
+  if (options.duration) {
+    const std::vector<double> values = parse_positive_list(*options.duration, "--duration");
+    if (values.size() != 1) {
+      throw InputError("--duration: expected one positive number, got '" + *options.duration + "'");
+    }
+    duration = values.front();
+  }
 
   std::set<std::string> labels;
   for (const std::filesystem::path& file : options.scenes) {

@@ -9,6 +9,8 @@
 // dopri run at tolerance 1e-12 per case.
 #include "app/stability_command.hpp"
 
+#include "app/option_lists.hpp"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -47,49 +49,11 @@ std::string number_text(double value, const char* format = "%.6g") {
 }
 
 /// Splits a comma-separated option value; empty items are errors naming the option.
-std::vector<std::string> split_list(const std::string& text, const char* option) {
-  std::vector<std::string> items;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    const auto first = item.find_first_not_of(" \t");
-    const auto last = item.find_last_not_of(" \t");
-    if (first == std::string::npos) {
-      throw InputError(std::string(option) + ": expected a comma-separated list without empty "
-                                             "items, got '" + text + "'");
-    }
-    items.push_back(item.substr(first, last - first + 1));
-  }
-  if (items.empty() || text.back() == ',') {
-    throw InputError(std::string(option) + ": expected a comma-separated list without empty "
-                                           "items, got '" + text + "'");
-  }
-  return items;
-}
-
-std::vector<double> parse_dts(const std::string& text) {
-  std::vector<double> dts;
-  for (const std::string& item : split_list(text, "--dts")) {
-    char* end = nullptr;
-    const double value = std::strtod(item.c_str(), &end);
-    if (end == item.c_str() || *end != '\0' || !std::isfinite(value) || !(value > 0.0)) {
-      throw InputError("--dts: expected positive finite time steps in seconds, got '" + item + "'");
-    }
-    dts.push_back(value);
-  }
-  return dts;
-}
-
 std::vector<engine::IntegratorInfo> parse_integrators(const std::optional<std::string>& text) {
   if (!text) return engine::integrator_catalog();
   std::vector<engine::IntegratorInfo> chosen;
-  for (const std::string& name : split_list(*text, "--integrators")) {
-    const auto kind = engine::integrator_from_name(name);
-    if (!kind) {
-      throw InputError("--integrators: unknown integrator '" + name + "'; expected one of: " +
-                       integrator_names());
-    }
-    chosen.push_back(engine::integrator_info(*kind));
+  for (const engine::IntegratorInfo* info : parse_integrator_list(*text, "--integrators")) {
+    chosen.push_back(*info);
   }
   return chosen;
 }
@@ -97,14 +61,14 @@ std::vector<engine::IntegratorInfo> parse_integrators(const std::optional<std::s
 /// The cases to run: the suite's (filtered by --cases), then the scene files.
 std::vector<StabilityCase> gather_cases(const StabilityOptions& options, std::string& suite_name) {
   std::optional<std::vector<double>> dts;
-  if (options.dts) dts = parse_dts(*options.dts);
+  if (options.dts) dts = parse_positive_list(*options.dts, "--dts");
   std::vector<StabilityCase> cases;
   const bool use_suite = options.suite || options.cases || options.scenes.empty();
   if (use_suite) {
     StabilitySuite suite = stability_suite(options.suite.value_or("standard"));
     suite_name = suite.name;
     if (options.cases) {
-      for (const std::string& name : split_list(*options.cases, "--cases")) {
+      for (const std::string& name : split_option_list(*options.cases, "--cases")) {
         const auto found = std::find_if(suite.cases.begin(), suite.cases.end(),
                                          [&](const StabilityCase& c) { return c.name == name; });
         if (found == suite.cases.end()) {
