@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/bench_command.hpp"
+#include "app/compare_command.hpp"
 #include "app/inspect_command.hpp"
 #include "app/render_command.hpp"
 #include "app/simulate_command.hpp"
@@ -22,6 +23,8 @@ int main(int argc, char** argv) {
   CLI::App& simulate = tumble::app::add_simulate_command(cli, simulate_options);
   tumble::app::RenderOptions render_options;
   CLI::App& render = tumble::app::add_render_command(cli, render_options);
+  tumble::app::CompareOptions compare_options;
+  CLI::App& compare = tumble::app::add_compare_command(cli, compare_options);
   tumble::app::BenchOptions bench_options;
   CLI::App& bench = tumble::app::add_bench_command(cli, bench_options);
   tumble::app::StabilityOptions stability_options;
@@ -39,6 +42,9 @@ int main(int argc, char** argv) {
       return tumble::app::run_simulate(simulate_options, std::cout, std::cerr);
     }
     if (render.parsed()) return tumble::app::run_render(render_options, std::cout, std::cerr);
+    if (compare.parsed()) {
+      return tumble::app::run_compare(compare_options, std::cout, std::cerr);
+    }
     if (bench.parsed()) return tumble::app::run_bench(bench_options, std::cout, std::cerr);
     if (stability.parsed()) {
       return tumble::app::run_stability(stability_options, std::cout, std::cerr);

@@ -90,32 +90,6 @@ RenderSettings render_settings(const RenderOptions& options, const SceneDescript
   return settings;
 }
 
-/// Opens the output before anything is rendered. H.264 and VP9 in yuv420p need even sides;
-/// that is checked here so the message says what to change rather than quoting the encoder.
-std::unique_ptr<render::ImageSink> open_output(const RenderOptions& options,
-                                               const RenderSettings& settings,
-                                               std::size_t first_frame) {
-  render::SinkKind kind{};
-  try {
-    kind = render::sink_kind(options.output);
-  } catch (const std::invalid_argument& error) {
-    throw InputError(error.what());
-  }
-  if ((kind == render::SinkKind::kMp4 || kind == render::SinkKind::kWebm) &&
-      (settings.width % 2 != 0 || settings.height % 2 != 0)) {
-    throw InputError("cannot write '" + options.output.string() +
-                     "': " + (kind == render::SinkKind::kMp4 ? "H.264" : "VP9") +
-                     " video needs an even width and height, got " +
-                     std::to_string(settings.width) + "x" + std::to_string(settings.height) +
-                     (options.size ? " (--size)" : " (the scene's render settings)"));
-  }
-  render::SinkOptions sink;
-  sink.width = settings.width;
-  sink.height = settings.height;
-  sink.fps = settings.fps;
-  sink.first_index = first_frame;
-  return render::open_image_sink(options.output, sink);
-}
 
 // SIGINT and SIGTERM set a flag that the frame loop polls: the loop stops, the sink is
 // destroyed unfinished (its temporary removed) and the command returns kExitInterrupted.
@@ -124,41 +98,6 @@ volatile std::sig_atomic_t interrupt_signal = 0;
 void on_interrupt(int signal) {
   interrupt_signal = signal;
 }
-
-/// Installs the handlers for its lifetime. A signal that was ignored when we started (a
-/// background job's SIGINT) stays ignored; a second signal stops the process at once.
-class InterruptGuard {
- public:
-  InterruptGuard() {
-    interrupt_signal = 0;
-    install(SIGINT, old_interrupt_, interrupt_installed_);
-    install(SIGTERM, old_terminate_, terminate_installed_);
-  }
-  ~InterruptGuard() {
-    if (interrupt_installed_) sigaction(SIGINT, &old_interrupt_, nullptr);
-    if (terminate_installed_) sigaction(SIGTERM, &old_terminate_, nullptr);
-  }
-  InterruptGuard(const InterruptGuard&) = delete;
-  InterruptGuard& operator=(const InterruptGuard&) = delete;
-
-  bool interrupted() const { return interrupt_signal != 0; }
-  const char* signal_name() const { return interrupt_signal == SIGTERM ? "SIGTERM" : "SIGINT"; }
-
- private:
-  static void install(int signal, struct sigaction& old, bool& installed) {
-    if (sigaction(signal, nullptr, &old) != 0 || old.sa_handler == SIG_IGN) return;
-    struct sigaction action {};
-    action.sa_handler = on_interrupt;
-    sigemptyset(&action.sa_mask);
-    action.sa_flags = SA_RESTART | SA_RESETHAND;
-    installed = sigaction(signal, &action, nullptr) == 0;
-  }
-
-  struct sigaction old_interrupt_ {};
-  struct sigaction old_terminate_ {};
-  bool interrupt_installed_ = false;
-  bool terminate_installed_ = false;
-};
 
 int report_interrupted(const InterruptGuard& guard, const RenderOptions& options,
                        std::ostream& err) {
@@ -174,7 +113,7 @@ int render_scene(const RenderOptions& options, const InterruptGuard& guard, std:
 
   // Options and scene, then the output: both fail before any mesh is read.
   const RenderPlan plan = plan_render(options);
-  std::unique_ptr<render::ImageSink> sink = open_output(options, plan.settings, plan.frames.first);
+  std::unique_ptr<render::ImageSink> sink = open_render_output(options, plan.settings, plan.frames.first);
 
   // Meshes, simulation, renderer.
   RenderJob job(plan);
@@ -223,6 +162,61 @@ int render_scene(const RenderOptions& options, const InterruptGuard& guard, std:
 }
 
 }  // namespace
+
+InterruptGuard::InterruptGuard() {
+  interrupt_signal = 0;
+  install(SIGINT, old_interrupt_, interrupt_installed_);
+  install(SIGTERM, old_terminate_, terminate_installed_);
+}
+
+InterruptGuard::~InterruptGuard() {
+  if (interrupt_installed_) sigaction(SIGINT, &old_interrupt_, nullptr);
+  if (terminate_installed_) sigaction(SIGTERM, &old_terminate_, nullptr);
+}
+
+bool InterruptGuard::interrupted() const {
+  return interrupt_signal != 0;
+}
+
+const char* InterruptGuard::signal_name() const {
+  return interrupt_signal == SIGTERM ? "SIGTERM" : "SIGINT";
+}
+
+void InterruptGuard::install(int signal, struct sigaction& old, bool& installed) {
+  if (sigaction(signal, nullptr, &old) != 0 || old.sa_handler == SIG_IGN) return;
+  struct sigaction action {};
+  action.sa_handler = on_interrupt;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESTART | SA_RESETHAND;
+  installed = sigaction(signal, &action, nullptr) == 0;
+}
+
+// H.264 and VP9 in yuv420p need even sides; that is checked here so the message says what to
+// change rather than quoting the encoder.
+std::unique_ptr<render::ImageSink> open_render_output(const RenderOptions& options,
+                                                      const RenderSettings& settings,
+                                                      std::size_t first_frame) {
+  render::SinkKind kind{};
+  try {
+    kind = render::sink_kind(options.output);
+  } catch (const std::invalid_argument& error) {
+    throw InputError(error.what());
+  }
+  if ((kind == render::SinkKind::kMp4 || kind == render::SinkKind::kWebm) &&
+      (settings.width % 2 != 0 || settings.height % 2 != 0)) {
+    throw InputError("cannot write '" + options.output.string() +
+                     "': " + (kind == render::SinkKind::kMp4 ? "H.264" : "VP9") +
+                     " video needs an even width and height, got " +
+                     std::to_string(settings.width) + "x" + std::to_string(settings.height) +
+                     (options.size ? " (--size)" : " (the scene's render settings)"));
+  }
+  render::SinkOptions sink;
+  sink.width = settings.width;
+  sink.height = settings.height;
+  sink.fps = settings.fps;
+  sink.first_index = first_frame;
+  return render::open_image_sink(options.output, sink);
+}
 
 CLI::App& add_render_command(CLI::App& cli, RenderOptions& options) {
   CLI::App& render = *cli.add_subcommand(
@@ -350,16 +344,21 @@ struct RenderJob::Impl {
   RenderSettings settings;
   CompiledScene compiled;
   std::optional<engine::Simulation> simulation;
-  render::Renderer renderer;
+  std::unique_ptr<render::Renderer> own_renderer;  ///< empty when drawing with a shared one
+  render::Renderer& renderer;
   FrameBuilder builder;
   std::size_t observed = 0;  ///< frame times observed so far
 
-  explicit Impl(const RenderPlan& plan)
+  Impl(const RenderPlan& plan, render::Renderer* shared)
       : scene(plan.scene),
         settings(plan.settings),
         compiled(compile_scene(scene, /*keep_geometry=*/true)),
         simulation(make_simulation(scene, compiled)),
-        renderer(render::RendererOptions{settings.width, settings.height, settings.antialiasing}),
+        own_renderer(shared != nullptr
+                         ? nullptr
+                         : std::make_unique<render::Renderer>(render::RendererOptions{
+                               settings.width, settings.height, settings.antialiasing})),
+        renderer(shared != nullptr ? *shared : *own_renderer),
         builder(scene, compiled, settings, renderer) {}
 
   static engine::Simulation make_simulation(const SceneDescription& scene,
@@ -385,7 +384,10 @@ struct RenderJob::Impl {
   }
 };
 
-RenderJob::RenderJob(const RenderPlan& plan) : impl_(std::make_unique<Impl>(plan)) {}
+RenderJob::RenderJob(const RenderPlan& plan) : impl_(std::make_unique<Impl>(plan, nullptr)) {}
+
+RenderJob::RenderJob(const RenderPlan& plan, render::Renderer& renderer)
+    : impl_(std::make_unique<Impl>(plan, &renderer)) {}
 
 RenderJob::~RenderJob() = default;
 
@@ -401,7 +403,11 @@ void RenderJob::advance_to(std::size_t frame) {
 }
 
 void RenderJob::draw(render::Image& image) {
-  impl_->renderer.render(impl_->builder.build(*impl_->simulation), image);
+  impl_->renderer.render(build(), image);
+}
+
+render::DrawList RenderJob::build() const {
+  return impl_->builder.build(*impl_->simulation);
 }
 
 const engine::Simulation& RenderJob::simulation() const {

@@ -6,6 +6,8 @@
 /// while its next step ends at or before t_k, so when dt does not divide the frame interval a
 /// frame shows the last state at or before t_k (the overlay prints the time actually shown).
 
+#include <signal.h>
+
 #include <cstddef>
 #include <filesystem>
 #include <iosfwd>
@@ -16,6 +18,7 @@
 
 #include "app/render_settings.hpp"
 #include "app/scene.hpp"
+#include "render/draw_list.hpp"
 #include "render/image.hpp"
 
 namespace CLI {
@@ -25,6 +28,11 @@ class App;
 namespace tumble::engine {
 class Simulation;
 }  // namespace tumble::engine
+
+namespace tumble::render {
+class ImageSink;
+class Renderer;
+}  // namespace tumble::render
 
 namespace tumble::app {
 
@@ -90,6 +98,10 @@ class RenderJob {
   /// Imports the meshes and creates the renderer. Throws engine::InputError (scene) or
   /// std::runtime_error (no GL context).
   explicit RenderJob(const RenderPlan& plan);
+  /// Same, drawing with `renderer` (the caller's, which must outlive the job; its size is the
+  /// caller's business): several jobs can share one GL context, and their draw lists' meshes
+  /// are valid in it. Throws engine::InputError (scene).
+  RenderJob(const RenderPlan& plan, render::Renderer& renderer);
   ~RenderJob();
   RenderJob(const RenderJob&) = delete;
   RenderJob& operator=(const RenderJob&) = delete;
@@ -101,11 +113,43 @@ class RenderJob {
   /// Draws the current state into `image` (storage reused).
   void draw(render::Image& image);
 
+  /// The draw list of the current state (what draw() renders).
+  render::DrawList build() const;
+
   const engine::Simulation& simulation() const;
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
+};
+
+/// Opens the output of `options` (its name and --size) for frames of `settings`' size before
+/// anything is rendered; videos need even sides. Throws engine::InputError (unknown kind, odd
+/// sides) or std::runtime_error (filesystem, ffmpeg), naming the path.
+std::unique_ptr<render::ImageSink> open_render_output(const RenderOptions& options,
+                                                      const RenderSettings& settings,
+                                                      std::size_t first_frame);
+
+/// Catches SIGINT and SIGTERM for its lifetime and remembers that one came, for a frame loop to
+/// poll. A signal that was ignored when it was made (a background job's SIGINT) stays ignored; a
+/// second signal stops the process at once.
+class InterruptGuard {
+ public:
+  InterruptGuard();
+  ~InterruptGuard();
+  InterruptGuard(const InterruptGuard&) = delete;
+  InterruptGuard& operator=(const InterruptGuard&) = delete;
+
+  bool interrupted() const;
+  const char* signal_name() const;
+
+ private:
+  static void install(int signal, struct sigaction& old, bool& installed);
+
+  struct sigaction old_interrupt_ {};
+  struct sigaction old_terminate_ {};
+  bool interrupt_installed_ = false;
+  bool terminate_installed_ = false;
 };
 
 /// Runs the command. Returns 0, 1 (input, output or ffmpeg error: one line on `err`, nothing
