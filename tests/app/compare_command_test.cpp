@@ -18,6 +18,7 @@
 #include "engine/input_error.hpp"
 #include "render/image.hpp"
 #include "render/png_io.hpp"
+#include "support/command_test.hpp"
 #include "support/run_command.hpp"
 
 namespace tumble::app {
@@ -81,33 +82,12 @@ double fraction_differing(const render::Image& a, const render::Image& b, int le
   return static_cast<double>(count) / static_cast<double>(a.rgba.size() / 4);
 }
 
-class CompareCommand : public ::testing::Test {
+class CompareCommand : public testing::CommandTest {
  protected:
-  void SetUp() override { dir_ = fresh_directory("compare"); }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
-  std::string write_scene(const json& scene, const std::string& name = "scene.json") const {
-    std::ofstream(dir_ / name) << scene.dump(2);
-    return path(name);
-  }
-
   static testing::CommandResult compare(const std::string& arguments) {
     return run_command(tumble_executable() + " compare " + arguments);
   }
 
-  /// "codec,width,height,frames" of the first video stream, as ffprobe counts them.
-  static std::string probe(const std::string& file) {
-    const auto result = run_command(
-        "ffprobe -v error -select_streams v:0 -count_frames -show_entries "
-        "stream=codec_name,width,height,nb_read_frames -of csv=p=0 '" +
-        file + "'");
-    EXPECT_EQ(result.status, 0) << result.err;
-    std::string text = result.out;
-    while (!text.empty() && (text.back() == '\n' || text.back() == ',')) text.pop_back();
-    return text;
-  }
 
   /// Names in the test folder other than the scene files.
   std::vector<std::string> outputs() const {
@@ -119,8 +99,6 @@ class CompareCommand : public ::testing::Test {
     std::sort(names.begin(), names.end());
     return names;
   }
-
-  std::filesystem::path dir_;
 };
 
 TEST(CompareOptionsParsing, IntegratorListNeedsTwoOrMoreKnownDistinctNames) {
@@ -172,7 +150,7 @@ TEST_F(CompareCommand, GridVideoHasTheFrameSizeAndFrameCount) {
   ASSERT_EQ(result.status, 0) << result.err;
   EXPECT_THAT(result.out, HasSubstr("3 integrators, 16 frames (grid 2x2)"));
   // 3 s at 5 fps: 16 frames.
-  EXPECT_EQ(probe(path("grid.mp4")), "h264,320,180,16");
+  EXPECT_EQ(testing::probe_video(path("grid.mp4")), "h264,320,180,16");
   EXPECT_EQ(outputs(), (std::vector<std::string>{"grid.mp4"}));
 }
 
@@ -253,7 +231,7 @@ TEST_F(CompareCommand, ABlownUpRunFreezesAndGivesStatusThreeWithAWarning) {
                                     "'needle' at step 241 (t = 2.41 s)"));
   EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
   // Complete: 3 s at 10 fps.
-  EXPECT_EQ(probe(path("needle.mp4")), "h264,320,180,31");
+  EXPECT_EQ(testing::probe_video(path("needle.mp4")), "h264,320,180,31");
 }
 
 TEST_F(CompareCommand, ErrorsAreOneLineWithStatusOneAndLeaveNothing) {

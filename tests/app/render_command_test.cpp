@@ -16,6 +16,7 @@
 #include "engine/input_error.hpp"
 #include "engine/simulation.hpp"
 #include "render/png_io.hpp"
+#include "support/command_test.hpp"
 #include "support/run_command.hpp"
 
 namespace tumble::app {
@@ -87,33 +88,12 @@ std::string png_name(std::size_t index) {
   return name;
 }
 
-class RenderCommand : public ::testing::Test {
+class RenderCommand : public testing::CommandTest {
  protected:
-  void SetUp() override { dir_ = fresh_directory("render"); }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
-  std::string write_scene(const json& scene, const std::string& name = "scene.json") const {
-    std::ofstream(dir_ / name) << scene.dump(2);
-    return path(name);
-  }
-
   static testing::CommandResult render(const std::string& arguments) {
     return run_command(tumble_executable() + " render " + arguments);
   }
 
-  /// "codec,width,height,frames" of the first video stream, as ffprobe counts them.
-  static std::string probe(const std::string& file) {
-    const auto result = run_command(
-        "ffprobe -v error -select_streams v:0 -count_frames -show_entries "
-        "stream=codec_name,width,height,nb_read_frames -of csv=p=0 '" +
-        file + "'");
-    EXPECT_EQ(result.status, 0) << result.err;
-    std::string text = result.out;
-    while (!text.empty() && (text.back() == '\n' || text.back() == ',')) text.pop_back();
-    return text;
-  }
 
   /// Names in the test folder (temporaries start with '.').
   std::vector<std::string> entries() const {
@@ -133,8 +113,6 @@ class RenderCommand : public ::testing::Test {
     }
     return names;
   }
-
-  std::filesystem::path dir_;
 };
 
 TEST(RenderFrames, CountIsFloorOfDurationTimesFpsOverTimeScalePlusOne) {
@@ -225,7 +203,7 @@ TEST_F(RenderCommand, Mp4HasTheSizeAndFrameCountAndMatchesThePngFrames) {
   EXPECT_EQ(video.err, "");  // not a terminal: no progress bar
   EXPECT_THAT(video.out, HasSubstr("tumble render: 11 frames written to '" + path("out.mp4")));
   EXPECT_THAT(video.out, HasSubstr(" frames/s)"));
-  EXPECT_EQ(probe(path("out.mp4")), "h264,160,96,11");
+  EXPECT_EQ(testing::probe_video(path("out.mp4")), "h264,160,96,11");
 
   const auto frames =
       render(scene + " -o " + path("frames/") + " --size 160x96 --fps 20 --no-overlay -q");
@@ -261,7 +239,7 @@ TEST_F(RenderCommand, TimeScaleAndFpsSetTheFrameCount) {
   const auto slow = render(scene + " -o " + path("slow.gif") +
                            " --size 64x48 --fps 20 --time-scale 0.5 --no-overlay -q");
   ASSERT_EQ(slow.status, 0) << slow.err;
-  EXPECT_EQ(probe(path("slow.gif")), "gif,64,48,21");
+  EXPECT_EQ(testing::probe_video(path("slow.gif")), "gif,64,48,21");
 }
 
 TEST_F(RenderCommand, FrameRangeEqualsTheSameFramesOfAFullRender) {
@@ -287,7 +265,7 @@ TEST_F(RenderCommand, FrameRangeEqualsTheSameFramesOfAFullRender) {
   const auto video =
       render(scene + " -o " + path("part.mp4") + " --size 160x96 --fps 20 --frames 2:5 -q");
   ASSERT_EQ(video.status, 0) << video.err;
-  EXPECT_EQ(probe(path("part.mp4")), "h264,160,96,3");
+  EXPECT_EQ(testing::probe_video(path("part.mp4")), "h264,160,96,3");
 }
 
 TEST_F(RenderCommand, OutputErrorsLeaveNothingBehind) {
@@ -389,10 +367,10 @@ TEST_F(RenderCommand, SceneRenderSettingsApplyAndOptionsWin) {
   const std::string file = write_scene(scene);
   const auto from_scene = render(file + " -o " + path("scene.mp4") + " -q");
   ASSERT_EQ(from_scene.status, 0) << from_scene.err;
-  EXPECT_EQ(probe(path("scene.mp4")), "h264,96,64,6");
+  EXPECT_EQ(testing::probe_video(path("scene.mp4")), "h264,96,64,6");
   const auto overridden = render(file + " -o " + path("options.mp4") + " -q --size 64x48 --fps 20");
   ASSERT_EQ(overridden.status, 0) << overridden.err;
-  EXPECT_EQ(probe(path("options.mp4")), "h264,64,48,11");
+  EXPECT_EQ(testing::probe_video(path("options.mp4")), "h264,64,48,11");
 }
 
 TEST_F(RenderCommand, NoOverlayLeavesTheTextOut) {
@@ -425,7 +403,7 @@ TEST_F(RenderCommand, BlowUpWarnsFinishesTheVideoAndExitsWithThree) {
                                     "(t = 2.41 s): "));
   EXPECT_THAT(result.err, HasSubstr("later frames hold the last good state (t = 2.4 s)"));
   EXPECT_THAT(result.out, HasSubstr("31 frames written"));
-  EXPECT_EQ(probe(path("out.mp4")), "h264,64,48,31");
+  EXPECT_EQ(testing::probe_video(path("out.mp4")), "h264,64,48,31");
   EXPECT_TRUE(leftovers().empty());
 
   // --integrator reaches the simulation: RK4 gets through the same run.

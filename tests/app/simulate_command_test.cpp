@@ -15,6 +15,7 @@
 
 #include "app/csv_writer.hpp"
 #include "engine/integrators.hpp"
+#include "support/command_test.hpp"
 #include "support/run_command.hpp"
 
 namespace tumble::app {
@@ -73,18 +74,8 @@ json free_body_scene(double duration = 0.5, double dt = 0.01) {
              {"angular_velocity_frame", "body"}}}}};
 }
 
-class SimulateCommand : public ::testing::Test {
+class SimulateCommand : public testing::CommandTest {
  protected:
-  void SetUp() override { dir_ = fresh_directory("simulate"); }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
-  std::string write_scene(const json& scene, const std::string& name = "scene.json") const {
-    std::ofstream(dir_ / name) << scene.dump(2);
-    return path(name);
-  }
-
   testing::CommandResult simulate(const std::string& arguments) const {
     return run_command(tumble_executable() + " simulate " + arguments);
   }
@@ -98,8 +89,6 @@ class SimulateCommand : public ::testing::Test {
     }
     return names;
   }
-
-  std::filesystem::path dir_;
 };
 
 TEST_F(SimulateCommand, HelpListsEveryOption) {

@@ -1,0 +1,48 @@
+#pragma once
+// A fixture for end-to-end tests of the `tumble` executable: a fresh temporary folder per test,
+// scene files written into it, and ffprobe's view of a video.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "support/run_command.hpp"
+
+namespace tumble::testing {
+
+/// "codec,width,height,frames" of a video's first stream, as ffprobe counts them.
+inline std::string probe_video(const std::string& file) {
+  const auto result = run_command(
+      "ffprobe -v error -select_streams v:0 -count_frames -show_entries "
+      "stream=codec_name,width,height,nb_read_frames -of csv=p=0 '" +
+      file + "'");
+  EXPECT_EQ(result.status, 0) << result.err;
+  std::string text = result.out;
+  while (!text.empty() && (text.back() == '\n' || text.back() == ',')) text.pop_back();
+  return text;
+}
+
+/// Each test gets its own empty folder (named after its suite), removed afterwards.
+class CommandTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fresh_directory(::testing::UnitTest::GetInstance()->current_test_info()->test_suite_name());
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  /// Writes `scene` as JSON into the folder and returns its path.
+  std::string write_scene(const nlohmann::json& scene, const std::string& name = "scene.json") const {
+    std::ofstream(dir_ / name) << scene.dump(2);
+    return path(name);
+  }
+
+  std::filesystem::path dir_;
+};
+
+}  // namespace tumble::testing
