@@ -74,10 +74,11 @@ CLI::App& add_inspect_command(CLI::App& cli, InspectOptions& options) {
 
 engine::MeshReport inspect_file(const std::filesystem::path& file,
                                 const engine::MassOptions& mass) {
-  std::size_t welded_on_import = 0;
+  engine::ImportStats imported;
+  engine::TriangleMesh mesh = engine::import_mesh(file, &imported);
   engine::MeshReport report =
-      engine::analyze_mesh(engine::import_mesh(file, &welded_on_import), mass, file.string());
-  report.welded_vertices += welded_on_import;
+      engine::analyze_mesh(std::move(mesh), mass, file.string(), imported.distinct_positions);
+  report.welded_vertices += imported.welded_vertices;
   return report;
 }
 

@@ -178,7 +178,8 @@ void flip_reversed_parts(TriangleMesh& mesh, const Topology& topology,
 
 }  // namespace
 
-MeshReport analyze_mesh(TriangleMesh mesh, const MassOptions& options, const std::string& source) {
+MeshReport analyze_mesh(TriangleMesh mesh, const MassOptions& options, const std::string& source,
+                        bool distinct_positions) {
   check_options(options, source);
   MeshReport report;
   report.source = source;
@@ -197,7 +198,7 @@ MeshReport analyze_mesh(TriangleMesh mesh, const MassOptions& options, const std
 
   // Weld, then drop triangles that use a vertex twice and vertices no triangle uses (they
   // are not part of the body, and would move the bounding box).
-  report.welded_vertices = weld_by_position(mesh);
+  if (!distinct_positions) report.welded_vertices = weld_by_position(mesh);
   report.degenerate_triangles = remove_degenerate_triangles(mesh);
   remove_unreferenced_vertices(mesh);
   report.vertices = mesh.positions.size();

@@ -43,7 +43,8 @@ Eigen::Matrix4d to_eigen(const aiMatrix4x4& m) {
 
 /// Appends the triangles of every mesh below `node`, transformed into the file's root frame.
 void collect(const aiScene& scene, const aiNode& node, const Eigen::Matrix4d& parent,
-             TriangleMesh& out, std::size_t& welded_vertices) {
+             TriangleMesh& out, std::size_t& welded_vertices, std::size_t& placed,
+             bool& any_transform) {
   const Eigen::Matrix4d transform = parent * to_eigen(node.mTransformation);
   const Eigen::Matrix3d linear = transform.topLeftCorner<3, 3>();
   const Eigen::Vector3d translation = transform.topRightCorner<3, 1>();
@@ -61,6 +62,8 @@ void collect(const aiScene& scene, const aiNode& node, const Eigen::Matrix4d& pa
       return std::array<ai_real, 3>{p.x, p.y, p.z};
     });
     welded_vertices += mesh.mNumVertices - weld.kept.size();
+    ++placed;
+    any_transform = any_transform || !identity;
     const auto base = static_cast<std::uint32_t>(out.positions.size());
     out.positions.reserve(out.positions.size() + weld.kept.size());
     out.triangles.reserve(out.triangles.size() + mesh.mNumFaces);
@@ -79,13 +82,13 @@ void collect(const aiScene& scene, const aiNode& node, const Eigen::Matrix4d& pa
     }
   }
   for (unsigned child = 0; child < node.mNumChildren; ++child) {
-    collect(scene, *node.mChildren[child], transform, out, welded_vertices);
+    collect(scene, *node.mChildren[child], transform, out, welded_vertices, placed, any_transform);
   }
 }
 
 }  // namespace
 
-TriangleMesh import_mesh(const std::filesystem::path& file, std::size_t* welded_vertices) {
+TriangleMesh import_mesh(const std::filesystem::path& file, ImportStats* stats) {
   // Say plainly what is wrong with the path before assimp does it vaguely.
   std::error_code error;
   const auto status = std::filesystem::status(file, error);
@@ -116,9 +119,14 @@ TriangleMesh import_mesh(const std::filesystem::path& file, std::size_t* welded_
   if (scene->mRootNode == nullptr || scene->mNumMeshes == 0) fail(file, "contains no triangles");
 
   TriangleMesh mesh;
-  std::size_t welded = 0;
-  collect(*scene, *scene->mRootNode, Eigen::Matrix4d::Identity(), mesh, welded);
-  if (welded_vertices != nullptr) *welded_vertices = welded;
+  std::size_t welded = 0, placed = 0;
+  bool any_transform = false;
+  collect(*scene, *scene->mRootNode, Eigen::Matrix4d::Identity(), mesh, welded, placed,
+          any_transform);
+  if (stats != nullptr) {
+    stats->welded_vertices = welded;
+    stats->distinct_positions = placed == 1 && !any_transform;
+  }
   if (mesh.triangles.empty()) fail(file, "contains no triangles");
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
     if (!mesh.positions[i].allFinite()) {

@@ -83,6 +83,8 @@ TEST_F(InspectCommand, JsonReportOfABoxMatchesTheClosedForm) {
   const double m = 24.0 * 500.0;
   EXPECT_EQ(json["file"], path("box.stl"));
   EXPECT_EQ(json["triangles"], 12);
+  EXPECT_EQ(json["vertices"], 8);          // 36 STL corners welded on import
+  EXPECT_EQ(json["welded_vertices"], 28);  // (the analysis then need not weld again)
   EXPECT_EQ(json["parts"], 1);
   EXPECT_EQ(json["watertight"], true);
   EXPECT_NEAR(json["volume"].get<double>(), 24.0, 1e-12);

@@ -51,6 +51,9 @@ struct MeshReport {
 
 /// Validates options, scales, welds, checks and integrates `mesh`. Throws InputError with a
 /// one-line message starting with `source` on anything that is not a valid rigid body.
-MeshReport analyze_mesh(TriangleMesh mesh, const MassOptions& options, const std::string& source);
+/// `distinct_positions` says the caller knows no two vertices share a position (as
+/// import_mesh reports for single-mesh files), which skips the weld.
+MeshReport analyze_mesh(TriangleMesh mesh, const MassOptions& options, const std::string& source,
+                        bool distinct_positions = false);
 
 }  // namespace tumble::engine

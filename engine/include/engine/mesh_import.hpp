@@ -8,13 +8,21 @@
 
 namespace tumble::engine {
 
+/// What import_mesh did on the way.
+struct ImportStats {
+  std::size_t welded_vertices = 0;  ///< vertices merged within each of the file's meshes
+  /// True when the whole file was one mesh placed once without a transform: its welded
+  /// positions are then already distinct, and the analysis need not weld them again.
+  bool distinct_positions = false;
+};
+
 /// Reads every mesh of a file assimp understands (STL, OBJ, PLY, OFF, glTF 2.0, FBX, ...) into
 /// one triangle mesh, with each node's accumulated transform applied (a mirroring transform
 /// reverses the winding so normals stay outward). Vertices at identical positions within each
-/// of the file's meshes are welded on the way (their count goes to `welded_vertices`); those
-/// shared between meshes are left to weld_by_position. Polygons are triangulated; points and
-/// lines are ignored. Throws InputError naming the file when it cannot be read, has an unknown
-/// format, holds no triangles or has non-finite coordinates.
-TriangleMesh import_mesh(const std::filesystem::path& file, std::size_t* welded_vertices = nullptr);
+/// of the file's meshes are welded on the way; those shared between meshes are left to
+/// weld_by_position. Polygons are triangulated; points and lines are ignored. Throws
+/// InputError naming the file when it cannot be read, has an unknown format, holds no
+/// triangles or has non-finite coordinates.
+TriangleMesh import_mesh(const std::filesystem::path& file, ImportStats* stats = nullptr);
 
 }  // namespace tumble::engine
