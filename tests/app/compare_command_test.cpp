@@ -44,16 +44,6 @@ json tumbling_scene() {
              {"angular_velocity_frame", "body"}}}}};
 }
 
-/// A fast-spinning needle: explicit Euler blows up at step 241 (t = 2.41 s) with dt = 0.01.
-json needle_scene() {
-  return {{"duration", 3.0},
-          {"dt", 0.01},
-          {"bodies",
-           {{{"name", "needle"},
-             {"inertia", {{"principal", {0.001, 1, 1}}}},
-             {"mass", 1.0},
-             {"angular_velocity", {10, 1, 0}}}}}};
-}
 
 /// The w x h block of `image` whose top-left corner is (x, y).
 render::Image crop(const render::Image& image, int x, int y, int w, int h) {
@@ -223,7 +213,7 @@ TEST_F(CompareCommand, OverlayShowsEachRunInItsColourOverTheGhost) {
 }
 
 TEST_F(CompareCommand, ABlownUpRunFreezesAndGivesStatusThreeWithAWarning) {
-  const std::string scene = write_scene(needle_scene());
+  const std::string scene = write_scene(testing::fast_needle_scene());
   const auto result = compare(scene + " --integrators explicit-euler,rk4 -o '" +
                               path("needle.mp4") + "' --size 320x180 --fps 10");
   EXPECT_EQ(result.status, 3) << result.err;

@@ -44,17 +44,6 @@ json tumbling_scene(double duration = 0.5, double dt = 0.01) {
              {"angular_velocity_frame", "body"}}}}};
 }
 
-/// Explicit Euler on a fast-spinning needle: blows up at step 241 (t = 2.41 s).
-json blow_up_scene() {
-  return {{"duration", 3.0},
-          {"dt", 0.01},
-          {"integrator", "explicit-euler"},
-          {"bodies",
-           {{{"name", "needle"},
-             {"inertia", {{"principal", {0.001, 1, 1}}}},
-             {"mass", 1.0},
-             {"angular_velocity", {10, 1, 0}}}}}};
-}
 
 /// Mean absolute difference per RGB channel, in 8-bit levels.
 double mean_difference(const render::Image& a, const render::Image& b) {
@@ -395,7 +384,9 @@ TEST_F(RenderCommand, NoOverlayLeavesTheTextOut) {
 
 TEST_F(RenderCommand, BlowUpWarnsFinishesTheVideoAndExitsWithThree) {
   // 3 s at 10 fps: 31 frames; the run blows up at t = 2.41 s, frames 25..30 hold t = 2.4 s.
-  const std::string scene = write_scene(blow_up_scene());
+  json needle = testing::fast_needle_scene();
+  needle["integrator"] = "explicit-euler";
+  const std::string scene = write_scene(needle);
   const auto result = render(scene + " -o " + path("out.mp4") + " --size 64x48 --fps 10");
   EXPECT_EQ(result.status, 3);
   EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
