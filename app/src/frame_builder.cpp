@@ -147,8 +147,9 @@ struct FrameBuilder::Impl {
                                     times.begin());
   }
   void add_body_items(const engine::BodyModel& body, const engine::BodyState& state,
-                      std::size_t index, std::size_t end, render::DrawList& list) const;
-  void add_overlay(const engine::Simulation& simulation, std::size_t end,
+                      std::size_t index, std::size_t end, const ShowSettings& show,
+                      render::DrawList& list) const;
+  void add_overlay(const engine::Simulation& simulation, std::size_t end, const ShowSettings& show,
                    render::DrawList& list) const;
 };
 
@@ -305,8 +306,8 @@ void FrameBuilder::observe(const engine::Simulation& simulation) {
 
 void FrameBuilder::Impl::add_body_items(const engine::BodyModel& body,
                                         const engine::BodyState& state, std::size_t index,
-                                        std::size_t end, render::DrawList& list) const {
-  const ShowSettings& show = settings.show;
+                                        std::size_t end, const ShowSettings& show,
+                                        render::DrawList& list) const {
   const BodyLook& look = looks[index];
   const Eigen::Quaterniond body_turn = engine::body_orientation(body, state);
   const Eigen::Vector3d centre = rotation_centre(body, state);
@@ -358,14 +359,14 @@ void FrameBuilder::Impl::add_body_items(const engine::BodyModel& body,
 
   // Herpolhode (the w tip's path in the world, carried with the centre) and polhode (its path
   // in the body, drawn where the body is now).
-  if (show.herpolhode && end > 1) {
+  if (show.herpolhode && end > 1 && herpolhode[index].size() >= end) {
     render::Polyline line{{}, kHerpolhodeColour, 2.5f};
     for (std::size_t k = 0; k < end; ++k) {
       line.points.push_back((centre + herpolhode[index][k]).cast<float>());
     }
     list.polylines.push_back(std::move(line));
   }
-  if (show.polhode && end > 1) {
+  if (show.polhode && end > 1 && polhode[index].size() >= end) {
     render::Polyline line{{}, kPolhodeColour, 2.5f};
     for (std::size_t k = 0; k < end; ++k) {
       line.points.push_back((centre + state.orientation * polhode[index][k]).cast<float>());
@@ -384,7 +385,7 @@ void FrameBuilder::Impl::add_body_items(const engine::BodyModel& body,
 }
 
 void FrameBuilder::Impl::add_overlay(const engine::Simulation& simulation, std::size_t end,
-                                     render::DrawList& list) const {
+                                     const ShowSettings& show, render::DrawList& list) const {
   render::OverlayPanel panel;
   panel.title = title;
   // Wide enough for the title (about 7 px per character of ImGui's default font).
@@ -393,10 +394,10 @@ void FrameBuilder::Impl::add_overlay(const engine::Simulation& simulation, std::
   panel.lines.push_back(integrator_line);
   panel.lines.push_back(
       format("t = %.3f s of %g s", simulation.time(), simulation.settings().duration));
-  if (settings.show.angular_velocity) panel.lines.push_back("yellow arrow: angular velocity w");
-  if (settings.show.angular_momentum) panel.lines.push_back("violet arrow: angular momentum L");
-  if (settings.show.herpolhode) panel.lines.push_back("orange: herpolhode (w tip in the world)");
-  if (settings.show.polhode) panel.lines.push_back("blue: polhode (w tip in the body)");
+  if (show.angular_velocity) panel.lines.push_back("yellow arrow: angular velocity w");
+  if (show.angular_momentum) panel.lines.push_back("violet arrow: angular momentum L");
+  if (show.herpolhode) panel.lines.push_back("orange: herpolhode (w tip in the world)");
+  if (show.polhode) panel.lines.push_back("blue: polhode (w tip in the body)");
   const auto until = static_cast<long>(end);
   // Drift when the quantity is an invariant of the scene, change otherwise.
   panel.plots.push_back({conservative ? "energy drift" : "energy change",
@@ -421,8 +422,14 @@ void FrameBuilder::Impl::add_overlay(const engine::Simulation& simulation, std::
 }
 
 render::DrawList FrameBuilder::build(const engine::Simulation& simulation) const {
+  return build(simulation, impl_->settings.show);
+}
+
+double FrameBuilder::reach() const { return impl_->rig.reach; }
+
+render::DrawList FrameBuilder::build(const engine::Simulation& simulation,
+                                     const ShowSettings& show) const {
   const Impl& impl = *impl_;
-  const ShowSettings& show = impl.settings.show;
   render::DrawList list;
 
   // Camera and stage.
@@ -439,11 +446,11 @@ render::DrawList FrameBuilder::build(const engine::Simulation& simulation) const
   const double now = simulation.time();
   const std::size_t end = impl.history_end(now);
   for (std::size_t i = 0; i < simulation.bodies().size(); ++i) {
-    impl.add_body_items(simulation.bodies()[i], simulation.states()[i], i, end, list);
+    impl.add_body_items(simulation.bodies()[i], simulation.states()[i], i, end, show, list);
   }
 
   // Trails: the last `seconds` of each.
-  for (std::size_t k = 0; k < show.trails.size(); ++k) {
+  for (std::size_t k = 0; k < std::min(show.trails.size(), impl.trails.size()); ++k) {
     const double start = now - show.trails[k].seconds;
     const auto first = static_cast<std::size_t>(
         std::lower_bound(impl.times.begin(), impl.times.end(), start) - impl.times.begin());
@@ -453,7 +460,7 @@ render::DrawList FrameBuilder::build(const engine::Simulation& simulation) const
     list.polylines.push_back({to_float(points, 0), kTrailPalette[k % kTrailPalette.size()], 2.5f});
   }
 
-  if (show.overlay) impl.add_overlay(simulation, end, list);
+  if (show.overlay) impl.add_overlay(simulation, end, show, list);
   return list;
 }
 

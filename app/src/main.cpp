@@ -9,11 +9,12 @@
 #include "app/render_command.hpp"
 #include "app/simulate_command.hpp"
 #include "app/stability_command.hpp"
+#include "app/view_command.hpp"
 #include "engine/input_error.hpp"
 
 int main(int argc, char** argv) {
   CLI::App cli{"tumble: rigid bodies with mass properties from real meshes: inspect, simulate, "
-               "render"};
+               "render, compare, view"};
   cli.require_subcommand(1);
   cli.set_version_flag("--version", "tumble 0.1.0");
 
@@ -29,6 +30,8 @@ int main(int argc, char** argv) {
   CLI::App& bench = tumble::app::add_bench_command(cli, bench_options);
   tumble::app::StabilityOptions stability_options;
   CLI::App& stability = tumble::app::add_stability_command(cli, stability_options);
+  tumble::app::ViewOptions view_options;
+  CLI::App& view = tumble::app::add_view_command(cli, view_options);
 
   try {
     cli.parse(argc, argv);
@@ -49,6 +52,7 @@ int main(int argc, char** argv) {
     if (stability.parsed()) {
       return tumble::app::run_stability(stability_options, std::cout, std::cerr);
     }
+    if (view.parsed()) return tumble::app::run_view(view_options, std::cout, std::cerr);
   } catch (const tumble::engine::InputError& error) {
     std::cerr << "tumble: error: " << error.what() << "\n";
     return 1;

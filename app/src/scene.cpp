@@ -285,6 +285,7 @@ SceneDescription load_scene(const std::filesystem::path& file) {
 CompiledScene compile_scene(const SceneDescription& scene, bool keep_geometry) {
   CompiledScene out;
   out.geometry.resize(scene.bodies.size());
+  out.reports.resize(scene.bodies.size());
   const std::string source = scene.file.string();
 
   // Settings.
@@ -330,6 +331,7 @@ CompiledScene compile_scene(const SceneDescription& scene, bool keep_geometry) {
       model.mass = report.mass_properties.mass;
       inertia_com = report.mass_properties.inertia;
       mesh_principal = report.principal;
+      out.reports[i] = std::move(report);
     } else {
       model.mass = body.mass.value();
       inertia_com = body.inertia_tensor ? *body.inertia_tensor

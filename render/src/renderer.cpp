@@ -40,13 +40,24 @@ MeshId Renderer::upload(const MeshData& mesh) {
   return MeshId{static_cast<std::uint32_t>(impl_->meshes.size() - 1)};
 }
 
+std::size_t Renderer::mesh_count() const { return impl_->meshes.size(); }
+
+void Renderer::release_meshes(std::size_t keep) {
+  if (keep >= impl_->meshes.size()) return;
+  impl_->context.make_current();
+  for (std::size_t i = keep; i < impl_->meshes.size(); ++i) detail::destroy_mesh(impl_->meshes[i]);
+  impl_->meshes.resize(keep);
+}
+
 Image Renderer::render(const DrawList& frame) {
   Image image;
   render(frame, image);
   return image;
 }
 
-void Renderer::render(const DrawList& frame, Image& out) {
+void Renderer::render(const DrawList& frame, Image& out) { render(frame, out, ExtraPass{}); }
+
+void Renderer::render(const DrawList& frame, Image& out, const ExtraPass& extra) {
   OffscreenContext& context = impl_->context;
   context.make_current();
   impl_->scene->draw(frame, impl_->meshes, context);
@@ -54,7 +65,17 @@ void Renderer::render(const DrawList& frame, Image& out) {
     if (!impl_->overlay) impl_->overlay = std::make_unique<detail::OverlayPass>();
     impl_->overlay->draw(frame, context.width(), context.height());
   }
+  if (extra.before != nullptr) {
+    context.read_pixels(*extra.before);
+    context.make_current();  // the readback may have bound the resolve target
+  }
+  if (extra.draw) extra.draw(context.width(), context.height());
   context.read_pixels(out);
+}
+
+void Renderer::with_context(const std::function<void()>& work) {
+  impl_->context.make_current();
+  work();
 }
 
 int Renderer::width() const {

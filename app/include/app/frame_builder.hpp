@@ -31,6 +31,14 @@ class FrameBuilder {
   /// The draw list of the simulation's current state (after observe() at this time).
   render::DrawList build(const engine::Simulation& simulation) const;
 
+  /// Same, showing only the items of `show` (the viewer's toggles). Items whose history or
+  /// geometry the construction's settings did not ask for stay hidden: the herpolhode,
+  /// polhode and ellipsoid need them on at construction, trails index its trail list.
+  render::DrawList build(const engine::Simulation& simulation, const ShowSettings& show) const;
+
+  /// Radius around the camera's target that holds the whole motion (m).
+  double reach() const;
+
  private:
   struct Impl;
   std::shared_ptr<Impl> impl_;

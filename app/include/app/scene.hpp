@@ -21,6 +21,7 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
+#include "engine/mesh_analysis.hpp"
 #include "engine/rigid_body.hpp"
 #include "engine/simulation.hpp"
 #include "engine/triangle_mesh.hpp"
@@ -115,6 +116,9 @@ struct CompiledScene {
   /// Per body, its mesh in the body frame (the file's axes moved to the centre of mass,
   /// metres), when the body has a mesh; kept only when compile_scene is asked for it.
   std::vector<std::optional<engine::TriangleMesh>> geometry;
+  /// Per body, the mass-property report of its mesh (what `tumble inspect` prints), when it
+  /// has one.
+  std::vector<std::optional<engine::MeshReport>> reports;
 };
 
 /// Imports meshes, computes mass properties about each rotation centre and builds the initial

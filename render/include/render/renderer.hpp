@@ -20,6 +20,8 @@
 //   OSMesa's prototypes (the core profile rules out the prebuilt OpenGL2 backend). The ImGui
 //   context and font atlas are created on the first frame that has labels or panels.
 
+#include <cstddef>
+#include <functional>
 #include <memory>
 
 #include "render/draw_list.hpp"
@@ -37,6 +39,15 @@ struct RendererOptions {
   int samples = 1;
 };
 
+/// Drawing a caller adds on top of a frame (the viewer's interactive ImGui panels).
+struct ExtraPass {
+  /// Called with the renderer's GL context current and the frame's framebuffer bound, after
+  /// every pass of the frame and before the pixels are read back; gets the frame's size.
+  std::function<void(int width, int height)> draw;
+  /// When set, receives the frame as it was before `draw` (what `tumble render` writes).
+  Image* before = nullptr;
+};
+
 /// Off-screen renderer; not thread-safe, use one per thread.
 class Renderer {
  public:
@@ -50,10 +61,23 @@ class Renderer {
   /// std::invalid_argument for malformed meshes.
   MeshId upload(const MeshData& mesh);
 
+  /// Meshes uploaded so far (the next upload's handle value).
+  std::size_t mesh_count() const;
+  /// Releases every mesh uploaded after the first `keep` (their handles become invalid): a
+  /// caller that rebuilds its scene takes mesh_count() once and releases back to it.
+  void release_meshes(std::size_t keep);
+
   /// Draws one frame and returns its pixels (rows top-down).
   Image render(const DrawList& frame);
   /// Same, reusing `out`'s storage (no allocation once sized).
   void render(const DrawList& frame, Image& out);
+
+  /// Same, then `extra.draw` on top; `out` gets the frame with it.
+  void render(const DrawList& frame, Image& out, const ExtraPass& extra);
+
+  /// Runs `work` with this renderer's GL context current (for callers that create or release
+  /// GL objects of their own, such as an ImGui backend, in this context).
+  void with_context(const std::function<void()>& work);
 
   int width() const;
   int height() const;
