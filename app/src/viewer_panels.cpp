@@ -20,12 +20,6 @@ namespace {
 const ImVec4 kErrorColour{1.0f, 0.45f, 0.40f, 1.0f};
 const ImVec4 kDimColour{0.70f, 0.70f, 0.70f, 1.0f};
 
-std::string text(const char* format, double a, double b = 0.0, double c = 0.0) {
-  char buffer[160];
-  std::snprintf(buffer, sizeof buffer, format, a, b, c);
-  return buffer;
-}
-
 /// Index of `name` in the integrator catalogue (0 when absent).
 int catalog_index(const std::string& name) {
   const auto& catalog = engine::integrator_catalog();
@@ -35,13 +29,83 @@ int catalog_index(const std::string& name) {
   return 0;
 }
 
-/// A plot filling the panel's width, with its latest value in the label.
-void plot(const char* name, const std::vector<float>& values, const char* unit, float height) {
-  const std::string overlay =
-      values.empty() ? std::string(name) : std::string(name) + text(" %.3g", values.back()) + unit;
-  ImGui::PlotLines((std::string("##") + name).c_str(), values.data(),
-                   static_cast<int>(values.size()), 0, overlay.c_str(), FLT_MAX, FLT_MAX,
-                   ImVec2(ImGui::GetContentRegionAvail().x, height));
+/// One line of a plot.
+struct Series {
+  const char* name;
+  const std::vector<float>* values;
+  ImU32 colour;
+};
+
+/// Several series in one frame filling the panel's width, each decimated to a min/max pair per
+/// two pixels (so a long history costs the same as a short one: llvmpipe pays per triangle),
+/// with the latest values as a legend above it.
+void plot(const std::vector<Series>& series, float height) {
+  // Legend: the latest value of each series in its colour.
+  for (std::size_t k = 0; k < series.size(); ++k) {
+    if (k > 0) ImGui::SameLine();
+    const std::vector<float>& values = *series[k].values;
+    ImGui::PushStyleColor(ImGuiCol_Text, series[k].colour);
+    ImGui::Text("%s %.3g", series[k].name, values.empty() ? 0.0 : double{values.back()});
+    ImGui::PopStyleColor();
+  }
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  const float width = ImGui::GetContentRegionAvail().x;
+  ImGui::Dummy(ImVec2(width, height));
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  draw->AddRectFilled(origin, ImVec2(origin.x + width, origin.y + height),
+                      ImGui::GetColorU32(ImGuiCol_FrameBg));
+
+  // A common vertical range; a flat one is widened so a constant draws mid-height.
+  float low = FLT_MAX;
+  float high = -FLT_MAX;
+  for (const Series& line : series) {
+    for (float v : *line.values) {
+      if (std::isfinite(v)) {
+        low = std::min(low, v);
+        high = std::max(high, v);
+      }
+    }
+  }
+  if (low > high) return;
+  if (high - low < 1e-30f) {
+    low -= 1.0f;
+    high += 1.0f;
+  }
+  const int buckets = std::max(1, static_cast<int>(width / 2.0f));
+  std::vector<ImVec2> points;
+  for (const Series& line : series) {
+    const std::vector<float>& values = *line.values;
+    if (values.size() < 2) continue;
+    points.clear();
+    const auto to_screen = [&](double fraction, float v) {
+      return ImVec2(origin.x + static_cast<float>(fraction) * width,
+                    origin.y + height - 2.0f - (v - low) / (high - low) * (height - 4.0f));
+    };
+    const std::size_t n = values.size();
+    if (n <= static_cast<std::size_t>(2 * buckets)) {
+      for (std::size_t i = 0; i < n; ++i) {
+        points.push_back(to_screen(static_cast<double>(i) / static_cast<double>(n - 1), values[i]));
+      }
+    } else {
+      // Each bucket's minimum and maximum, in the order they occur.
+      for (int b = 0; b < buckets; ++b) {
+        const std::size_t first = n * static_cast<std::size_t>(b) / static_cast<std::size_t>(buckets);
+        const std::size_t last =
+            n * static_cast<std::size_t>(b + 1) / static_cast<std::size_t>(buckets);
+        std::size_t lo = first;
+        std::size_t hi = first;
+        for (std::size_t i = first; i < last; ++i) {
+          if (values[i] < values[lo]) lo = i;
+          if (values[i] > values[hi]) hi = i;
+        }
+        for (std::size_t i : {std::min(lo, hi), std::max(lo, hi)}) {
+          points.push_back(to_screen(static_cast<double>(i) / static_cast<double>(n - 1), values[i]));
+        }
+      }
+    }
+    draw->AddPolyline(points.data(), static_cast<int>(points.size()), line.colour,
+                      ImDrawFlags_None, 1.0f);
+  }
 }
 
 }  // namespace
@@ -320,14 +384,17 @@ void Panels::plots_section(Viewer& viewer) {
   Session& session = viewer.session();
   if (!ImGui::CollapsingHeader("Plots", ImGuiTreeNodeFlags_DefaultOpen)) return;
   const History& history = session.history();
-  plot("energy drift", history.energy_drift, "", 45.0f);
-  plot("|L| drift", history.momentum_drift, "", 45.0f);
+  ImGui::TextColored(kDimColour, "relative drift of the invariants");
+  plot({{"energy", &history.energy_drift, IM_COL32(250, 200, 60, 255)},
+        {"|L|", &history.momentum_drift, IM_COL32(200, 140, 255, 255)}},
+       60.0f);
   const auto& bodies = session.compiled().bodies;
   ImGui::TextColored(kDimColour, "w of %s in its body frame (rad/s)",
                      bodies[std::min(session.plotted_body(), bodies.size() - 1)].name.c_str());
-  plot("w_x", history.omega[0], "", 40.0f);
-  plot("w_y", history.omega[1], "", 40.0f);
-  plot("w_z", history.omega[2], "", 40.0f);
+  plot({{"x", &history.omega[0], IM_COL32(240, 90, 80, 255)},
+        {"y", &history.omega[1], IM_COL32(100, 220, 100, 255)},
+        {"z", &history.omega[2], IM_COL32(100, 150, 255, 255)}},
+       80.0f);
   if (viewer.selected_body != session.plotted_body()) session.set_plotted_body(viewer.selected_body);
 }
 

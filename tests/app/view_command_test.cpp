@@ -211,6 +211,31 @@ TEST_F(ViewCommand, ABadDroppedFileShowsAnErrorAndTheViewerKeepsRunning) {
   EXPECT_GT(changed_pixels(shot("after.png"), shot("racket.png"), kSceneRegion), 5000u);
 }
 
+TEST_F(ViewCommand, RealKeyPressesFromXdotoolReachTheViewer) {
+  // The script only takes screenshots; the keys come from the X server, through SDL's events.
+  if (run_command("command -v xdotool").status != 0) {
+    if (std::getenv("CI") != nullptr) FAIL() << "xdotool is not installed";
+    GTEST_SKIP() << "xdotool is not installed";
+  }
+  std::ofstream(dir_ / "script.txt") << "1.0 screenshot playing.png\n"
+                                        "4.0 screenshot paused1.png\n"
+                                        "4.5 screenshot paused2.png\n"
+                                        "6.0 quit\n";
+  const std::string keys =
+      "sleep 2.5; xdotool search --sync --name '^tumble view$' windowfocus --sync key space; "
+      "sleep 1; xdotool search --name '^tumble view$' windowfocus --sync key ctrl+p";
+  const auto result = run_command(
+      "cd '" + dir_.string() + "' && xvfb-run -a -s '-screen 0 1280x800x24' sh -c \"'" +
+      tumble_executable() + "' view '" + demo() +
+      "' --script script.txt --output-dir . </dev/null & " + keys + "; wait\"");
+  ASSERT_EQ(result.status, 0) << result.err;
+  const render::Image paused1 = shot("paused1.png");
+  EXPECT_EQ(changed_pixels(paused1, shot("paused2.png"), kSceneRegion), 0u);
+  EXPECT_GT(changed_pixels(shot("playing.png"), paused1, kSceneRegion), 500u);
+  // Ctrl+P, with the modifier from the keyboard state.
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "t_handle_flip-1.png"));
+}
+
 TEST_F(ViewCommand, WithoutADisplayItSaysSoAndFails) {
   const auto result =
       run_command("env -u DISPLAY -u WAYLAND_DISPLAY '" + tumble_executable() + "' view");
