@@ -147,14 +147,15 @@ std::optional<std::string> Session::open_compiled(const SceneDescription& scene,
   try {
     rebuild({{scene.integrator, scene.dt}});
   } catch (const std::exception& error) {
+    // rebuild() refuses before it touches the runs, so the old ones keep going as they were.
     scene_ = std::move(old_scene);
     compiled_ = std::move(old_compiled);
     render_settings_ = old_settings;
     default_trails_ = old_trails;
     show_ = old_show;
     show_trails_ = old_show_trails;
-    if (!old_runs.empty()) rebuild(old_runs);
-    return error.what();
+    if (runs_.empty() && !old_runs.empty()) rebuild(old_runs);
+    return scene.file.string() + ": " + error.what();
   }
   plotted_body_ = 0;
   return std::nullopt;
@@ -189,6 +190,10 @@ void Session::rebuild(const std::vector<RunSpec>& specs) {
   runs_.clear();
   renderer_.release_meshes(mesh_mark_);
   RenderSettings builder_settings = render_settings_;
+  // The window's size, not the scene's video size: the camera's aspect and the overlay's
+  // placement follow what is drawn.
+  builder_settings.width = renderer_.width();
+  builder_settings.height = renderer_.height();
   builder_settings.show.herpolhode = true;  // cheap history, so the toggles work at any time
   builder_settings.show.polhode = true;
   builder_settings.show.overlay = true;
@@ -230,10 +235,11 @@ void Session::advance(double wall_seconds, std::chrono::steady_clock::duration b
   if (runs_.empty()) return;
   wall_seconds = std::max(wall_seconds, 0.0);
   if (!paused_ && !finished()) {
+    // The target moves with the clock alone: a step that ends past it (by at most half a
+    // step) is not carried into the next target, so nothing adds up over many frames.
     const double now = time();
-    target_time_ = std::max(target_time_, now) + wall_seconds * time_scale_;
-    target_time_ = std::min(target_time_, now + kMaxLagWall * time_scale_ +
-                                              wall_seconds * time_scale_);
+    target_time_ += wall_seconds * time_scale_;
+    target_time_ = std::min(target_time_, now + (kMaxLagWall + wall_seconds) * time_scale_);
     step_runs_to(target_time_, std::chrono::steady_clock::now() + budget);
     if (finished()) paused_ = true;
   }
@@ -356,7 +362,7 @@ render::DrawList Session::frame(const render::Camera& camera) {
   render::OverlayPanel legend;
   legend.title = "runs";
   legend.width_px = 300.0f;
-  legend.position_px = Eigen::Vector2f(12.0f, static_cast<float>(render_settings_.height) - 140.0f);
+  legend.position_px = Eigen::Vector2f(12.0f, static_cast<float>(renderer_.height()) - 140.0f);
   legend.lines.push_back("solid: " + runs_.front().integrator + ", dt = " +
                          number("%g", runs_.front().dt) + " s");
   ShowSettings bodies_only;
@@ -383,12 +389,17 @@ render::DrawList Session::frame(const render::Camera& camera) {
 
 void Session::rebuild_for_ellipsoid() {
   // Keep the runs' progress: rebuilding restarts them, so step them back to where they were.
+  // The live plots and the panels' idea of the run stay as they were.
   const double now = time();
   const bool was_paused = paused_;
+  History history = std::move(history_);
+  const std::size_t generation = generation_;
   rebuild(specs());
   step_runs_to(now, std::chrono::steady_clock::time_point::max());
   target_time_ = time();
   paused_ = was_paused;
+  history_ = std::move(history);
+  generation_ = generation;
 }
 
 void Session::set_plotted_body(std::size_t body) {

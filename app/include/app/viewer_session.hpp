@@ -60,7 +60,7 @@ struct History {
 
 class Session {
  public:
-  /// Samples kept in History (older ones are dropped).
+  /// Samples kept in History: when it passes 5/4 of this, the oldest are dropped down to it.
   static constexpr std::size_t kHistoryLength = 1200;
 
   /// Draws with `renderer`, which must outlive the session; meshes are uploaded into it.
@@ -114,7 +114,8 @@ class Session {
   /// the name is unknown, dt is not positive and finite or too small, or the integrator cannot
   /// take a body.
   std::optional<std::string> set_integrator(const std::string& integrator, double dt, bool beside);
-  /// Keeps only the first run (restarting nothing).
+  /// Keeps only the first run (restarting nothing; the others' meshes are released at the
+  /// next restart).
   void remove_beside_runs();
 
   // --- Initial state -------------------------------------------------------------------------
