@@ -211,6 +211,28 @@ TEST_F(ViewCommand, ABadDroppedFileShowsAnErrorAndTheViewerKeepsRunning) {
   EXPECT_GT(changed_pixels(shot("after.png"), shot("racket.png"), kSceneRegion), 5000u);
 }
 
+TEST_F(ViewCommand, PanelButtonsPlayPauseAndReset) {
+  // The control panel's first row at 1280x720: Play/Pause at (952, 103), Reset at (1061, 103).
+  const auto result = view(
+      "0.8 screenshot start.png\n"
+      "1.0 click 952 103\n"
+      "1.5 screenshot playing1.png\n"
+      "1.9 screenshot playing2.png\n"
+      "2.0 click 952 103\n"
+      "2.4 screenshot paused1.png\n"
+      "2.8 screenshot paused2.png\n"
+      "3.0 click 1061 103\n"
+      "3.4 screenshot reset.png\n"
+      "3.5 quit\n",
+      "--paused '" + demo() + "'");
+  ASSERT_EQ(result.status, 0) << result.err;
+  const render::Image start = shot("start.png");
+  EXPECT_GT(changed_pixels(shot("playing1.png"), shot("playing2.png"), kSceneRegion), 500u);
+  EXPECT_EQ(changed_pixels(shot("paused1.png"), shot("paused2.png"), kSceneRegion), 0u);
+  EXPECT_GT(changed_pixels(start, shot("paused1.png"), kSceneRegion), 500u);
+  EXPECT_EQ(changed_pixels(start, shot("reset.png"), kSceneRegion), 0u);
+}
+
 TEST_F(ViewCommand, RealKeyPressesFromXdotoolReachTheViewer) {
   // The script only takes screenshots; the keys come from the X server, through SDL's events.
   if (run_command("command -v xdotool").status != 0) {
