@@ -74,6 +74,8 @@ void Viewer::handle(const InputEvent& event, bool imgui_wants_keyboard, bool img
 void Viewer::apply(Shortcut shortcut) {
   switch (shortcut) {
     case Shortcut::kTogglePause:
+      // At the end of the run, play means from the start again.
+      if (session_.paused() && session_.finished()) session_.reset();
       session_.set_paused(!session_.paused());
       break;
     case Shortcut::kStep:

@@ -165,6 +165,20 @@ TEST_F(ViewerApp, KeysDoWhatTheShortcutsSay) {
   EXPECT_TRUE(viewer_->quit_requested());
 }
 
+TEST_F(ViewerApp, SpaceAtTheEndPlaysFromTheStart) {
+  std::ofstream(dir_ / "short.json") << R"({"duration": 0.1, "dt": 0.01, "bodies": [
+      {"inertia": {"principal": [1, 2, 3]}, "mass": 1, "angular_velocity": [0, 1, 0]}]})";
+  ASSERT_TRUE(viewer_->open(dir_ / "short.json"));
+  viewer_->update(1.0);
+  ASSERT_TRUE(viewer_->session().finished());
+  ASSERT_TRUE(viewer_->session().paused());
+  viewer_->handle(press(Key::kSpace), false, false);
+  EXPECT_FALSE(viewer_->session().paused());
+  EXPECT_EQ(viewer_->session().time(), 0.0);
+  viewer_->update(0.05);
+  EXPECT_NEAR(viewer_->session().time(), 0.05, 0.005 + 1e-12);
+}
+
 TEST_F(ViewerApp, KeysAreIgnoredWhileImGuiTakesTheKeyboard) {
   Session& session = viewer_->session();
   const std::vector<KeyEvent> keys = {press(Key::kSpace),  press(Key::kRight),

@@ -87,7 +87,7 @@ using InputEvent = std::variant<KeyEvent, TextEvent, MouseMoveEvent, MouseButton
 
 /// What a keyboard shortcut asks the viewer to do.
 enum class Shortcut {
-  kTogglePause,   ///< Space
+  kTogglePause,   ///< Space (at the end of the run: from the start again)
   kStep,          ///< Right: one dt step (pauses first)
   kReset,         ///< Backspace: back to the initial state
   kSlower,        ///< -: halve the time scale
