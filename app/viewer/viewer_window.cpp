@@ -257,7 +257,7 @@ int run_view(const ViewOptions& options, std::ostream& out, std::ostream& err) {
   render::Image scene_image;
   double played_wall = 0.0;  // wall time while playing, and simulated time it covered
   double played_simulated = 0.0;
-  while (!viewer.quit_requested()) {
+  for (;;) {
     const Clock::time_point now = Clock::now();
     const double wall = std::chrono::duration<double>(now - last).count();
     const double since_start = std::chrono::duration<double>(now - start).count();
@@ -286,8 +286,9 @@ int run_view(const ViewOptions& options, std::ostream& out, std::ostream& err) {
       imgui_input.feed(io, input);
       viewer.handle(input, io.WantCaptureKeyboard, io.WantCaptureMouse);
     }
-    if (options.exit_after && since_start >= *options.exit_after) break;
-    if (viewer.quit_requested()) break;
+    // A quit still draws this frame, so screenshots asked for with it are written.
+    const bool last_frame =
+        viewer.quit_requested() || (options.exit_after && since_start >= *options.exit_after);
 
     // Step, draw, show.
     const bool playing = !viewer.session().paused();
@@ -309,6 +310,7 @@ int run_view(const ViewOptions& options, std::ostream& out, std::ostream& err) {
     SDL_RenderCopy(window.renderer, window.texture, nullptr, nullptr);
     SDL_RenderPresent(window.renderer);
     frame_clock.add(std::chrono::duration<double>(Clock::now() - now).count());
+    if (last_frame) break;
   }
   if (viewer.recording()) viewer.stop_recording();
 
