@@ -218,14 +218,21 @@ MeshReport analyze_mesh(TriangleMesh mesh, const MassOptions& options, const std
   }
   const Eigen::Vector3d reference = 0.5 * (report.bounds_min + report.bounds_max);
 
-  // Edge topology and connected parts; on large meshes on a second thread, while the volume
-  // integrals (needed in the common single-part case) are summed on this one.
+  // Edge topology and connected parts. On large meshes the edge counts (the longest pass) run
+  // on a second thread, while this one sums the volume integrals (needed in the common
+  // single-part case) and then finds the parts.
   const bool concurrent = !report.shell && mesh.triangles.size() >= 200'000;
-  std::future<Topology> pending = std::async(
-      concurrent ? std::launch::async : std::launch::deferred, [&mesh] { return analyze_topology(mesh); });
+  Topology topology;
   MomentIntegrals solid;
-  if (concurrent) solid = solid_integrals(mesh, reference);
-  const Topology topology = pending.get();
+  if (concurrent) {
+    std::future<void> edges =
+        std::async(std::launch::async, [&mesh, &topology] { count_edge_uses(mesh, topology); });
+    solid = solid_integrals(mesh, reference);
+    find_parts(mesh, topology);
+    edges.get();
+  } else {
+    topology = analyze_topology(mesh);
+  }
   report.parts = topology.parts;
   report.boundary_edges = topology.boundary_edges;
   report.inconsistent_edges = topology.inconsistent_edges;

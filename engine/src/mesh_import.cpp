@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <fstream>
 #include <system_error>
+#include <thread>
 
 #include "engine/input_error.hpp"
 #include "engine/vertex_welding.hpp"
@@ -41,6 +42,15 @@ Eigen::Matrix4d to_eigen(const aiMatrix4x4& m) {
   return out;
 }
 
+/// Runs work(begin, end) over [0, count), split between two threads when count is large.
+template <typename Work>
+void split_in_two(std::size_t count, const Work& work) {
+  if (count < (std::size_t{1} << 18)) return work(std::size_t{0}, count);
+  std::thread helper(work, count / 2, count);
+  work(std::size_t{0}, count / 2);
+  helper.join();
+}
+
 /// Appends the triangles of every mesh below `node`, transformed into the file's root frame.
 void collect(const aiScene& scene, const aiNode& node, const Eigen::Matrix4d& parent,
              TriangleMesh& out, std::size_t& welded_vertices, std::size_t& placed,
@@ -64,21 +74,47 @@ void collect(const aiScene& scene, const aiNode& node, const Eigen::Matrix4d& pa
     welded_vertices += mesh.mNumVertices - weld.kept.size();
     ++placed;
     any_transform = any_transform || !identity;
+
+    // Widen (and place) the survivors. The output arrays are fresh memory of ~12 MB each for a
+    // million triangles: huge pages, and both halves faulted in at once by two threads.
     const auto base = static_cast<std::uint32_t>(out.positions.size());
-    out.positions.reserve(out.positions.size() + weld.kept.size());
-    out.triangles.reserve(out.triangles.size() + mesh.mNumFaces);
-    for (const std::uint32_t v : weld.kept) {
-      const aiVector3D& p = mesh.mVertices[v];
-      const Eigen::Vector3d position(p.x, p.y, p.z);
-      out.positions.push_back(identity ? position : Eigen::Vector3d(linear * position + translation));
-    }
-    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
-      const aiFace& face = mesh.mFaces[f];
-      if (face.mNumIndices != 3) continue;
+    const std::size_t survivors = weld.kept.size();
+    out.positions.reserve(base + survivors);
+    advise_huge_pages(out.positions.data() + base, survivors * sizeof(Eigen::Vector3d));
+    out.positions.resize(base + survivors);  // Eigen leaves the new vectors uninitialised
+    Eigen::Vector3d* const positions = out.positions.data() + base;
+    const auto widen = [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) {
+        const aiVector3D& p = mesh.mVertices[weld.kept[i]];
+        const Eigen::Vector3d position(p.x, p.y, p.z);
+        positions[i] = identity ? position : Eigen::Vector3d(linear * position + translation);
+      }
+    };
+    split_in_two(survivors, widen);
+
+    // Faces to welded triangles. When every face is a triangle (STL always), each lands at a
+    // known place, so large meshes are split between two threads.
+    const auto triangle_of = [&](const aiFace& face) {
       const std::uint32_t a = base + weld.new_index[face.mIndices[0]];
       const std::uint32_t b = base + weld.new_index[face.mIndices[1]];
       const std::uint32_t c = base + weld.new_index[face.mIndices[2]];
-      out.triangles.push_back(mirrored ? std::array{a, c, b} : std::array{a, b, c});
+      return mirrored ? std::array{a, c, b} : std::array{a, b, c};
+    };
+    if (mesh.mPrimitiveTypes == aiPrimitiveType_TRIANGLE) {
+      const std::size_t first = out.triangles.size();
+      const std::size_t faces = mesh.mNumFaces;
+      out.triangles.reserve(first + faces);
+      advise_huge_pages(out.triangles.data() + first, faces * sizeof(out.triangles[0]));
+      out.triangles.resize(first + faces);
+      std::array<std::uint32_t, 3>* const triangles = out.triangles.data() + first;
+      split_in_two(faces, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t f = begin; f < end; ++f) triangles[f] = triangle_of(mesh.mFaces[f]);
+      });
+    } else {
+      out.triangles.reserve(out.triangles.size() + mesh.mNumFaces);
+      for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+        if (mesh.mFaces[f].mNumIndices == 3) out.triangles.push_back(triangle_of(mesh.mFaces[f]));
+      }
     }
   }
   for (unsigned child = 0; child < node.mNumChildren; ++child) {

@@ -13,6 +13,7 @@
 #include <bit>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <stdexcept>
 
@@ -89,41 +90,57 @@ std::size_t remove_unreferenced_vertices(TriangleMesh& mesh) {
   return removed;
 }
 
-Topology analyze_topology(const TriangleMesh& mesh) {
+void count_edge_uses(const TriangleMesh& mesh, Topology& topology) {
   const std::size_t vertex_count = mesh.positions.size();
   if (vertex_count >= (std::size_t{1} << 31)) {
     throw std::length_error("analyze_topology: more than 2^31 vertices");
   }
-  Topology topology;
+  topology.boundary_edges = topology.inconsistent_edges = topology.non_manifold_edges = 0;
 
   // Bucket each edge under its smaller vertex: the entry is (larger vertex << 1 | reversed).
-  std::vector<std::size_t> bucket_start(vertex_count + 1, 0);
+  // Counting sort with 32-bit offsets, filled back to front so that the offsets end up at each
+  // bucket's start without a second offset array; the edge array gets huge pages (see
+  // advise_huge_pages). The order inside a bucket does not matter: it is sorted next.
+  const std::size_t edge_count = 3 * mesh.triangles.size();
+  if (edge_count >= std::numeric_limits<std::uint32_t>::max()) {
+    throw std::length_error("analyze_topology: more than 2^32 - 1 edges");
+  }
+  std::vector<std::uint32_t> bucket(vertex_count + 1, 0);
+  for (const auto& t : mesh.triangles) {
+    ++bucket[std::min(t[0], t[1])];
+    ++bucket[std::min(t[1], t[2])];
+    ++bucket[std::min(t[2], t[0])];
+  }
+  std::inclusive_scan(bucket.begin(), bucket.end(), bucket.begin());
+  const auto edges = std::make_unique_for_overwrite<std::uint32_t[]>(edge_count);
+  advise_huge_pages(edges.get(), edge_count * sizeof(std::uint32_t));
   for (const auto& t : mesh.triangles) {
     for (int corner = 0; corner < 3; ++corner) {
-      ++bucket_start[std::min(t[corner], t[(corner + 1) % 3]) + 1];
-    }
-  }
-  std::partial_sum(bucket_start.begin(), bucket_start.end(), bucket_start.begin());
-  std::vector<std::uint32_t> edges(bucket_start.back());
-  {
-    std::vector<std::size_t> fill(bucket_start.begin(), bucket_start.end() - 1);
-    for (const auto& t : mesh.triangles) {
-      for (int corner = 0; corner < 3; ++corner) {
-        const std::uint32_t from = t[corner];
-        const std::uint32_t to = t[(corner + 1) % 3];
-        const std::uint32_t low = std::min(from, to);
-        const std::uint32_t high = std::max(from, to);
-        edges[fill[low]++] = (high << 1) | (from > to ? 1u : 0u);
-      }
+      const std::uint32_t from = t[corner];
+      const std::uint32_t to = t[corner == 2 ? 0 : corner + 1];
+      const std::uint32_t low = std::min(from, to);
+      const std::uint32_t high = std::max(from, to);
+      edges[--bucket[low]] = (high << 1) | (from > to ? 1u : 0u);
     }
   }
 
-  // In each bucket, count each edge's uses in both directions.
+  // In each bucket, count each edge's uses in both directions. Buckets hold about six
+  // entries (three edges per triangle, two triangles per vertex), so an insertion sort beats
+  // std::sort's set-up.
   for (std::size_t v = 0; v < vertex_count; ++v) {
-    const auto begin = edges.begin() + static_cast<std::ptrdiff_t>(bucket_start[v]);
-    const auto end = edges.begin() + static_cast<std::ptrdiff_t>(bucket_start[v + 1]);
-    std::sort(begin, end);
-    for (auto run = begin; run != end;) {
+    std::uint32_t* const begin = edges.get() + bucket[v];
+    std::uint32_t* const end = edges.get() + bucket[v + 1];
+    if (end - begin > 16) {
+      std::sort(begin, end);
+    } else {
+      for (std::uint32_t* i = begin + 1; i < end; ++i) {
+        const std::uint32_t entry = *i;
+        std::uint32_t* j = i;
+        for (; j > begin && *(j - 1) > entry; --j) *j = *(j - 1);
+        *j = entry;
+      }
+    }
+    for (const std::uint32_t* run = begin; run != end;) {
       const std::uint32_t other = *run >> 1;
       std::size_t forward = 0;
       std::size_t backward = 0;
@@ -137,8 +154,12 @@ Topology analyze_topology(const TriangleMesh& mesh) {
       }
     }
   }
+}
 
+void find_parts(const TriangleMesh& mesh, Topology& topology) {
   // Connected parts through shared vertices, numbered in order of first triangle.
+  const std::size_t vertex_count = mesh.positions.size();
+  topology.parts = 0;
   DisjointSets sets(vertex_count);
   for (const auto& t : mesh.triangles) {
     sets.unite(t[0], t[1]);
@@ -152,6 +173,12 @@ Topology analyze_topology(const TriangleMesh& mesh) {
     if (part == kUnassigned) part = static_cast<std::uint32_t>(topology.parts++);
     topology.triangle_part[i] = part;
   }
+}
+
+Topology analyze_topology(const TriangleMesh& mesh) {
+  Topology topology;
+  count_edge_uses(mesh, topology);
+  find_parts(mesh, topology);
   return topology;
 }
 

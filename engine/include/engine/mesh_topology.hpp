@@ -11,7 +11,7 @@ namespace tumble::engine {
 
 /// Merges vertices whose positions are bit-identical (with -0 equal to +0), keeping the
 /// vertices in order of first use, and rewrites the triangles. Returns how many vertices were
-/// merged away. A hash and a radix sort, linear in the vertex count (no assimp post-process).
+/// merged away. Linear in the vertex count (engine/vertex_welding.hpp; no assimp post-process).
 std::size_t weld_by_position(TriangleMesh& mesh);
 
 /// Removes triangles that use a vertex twice (after welding, the only exact degeneracy that
@@ -41,5 +41,11 @@ struct Topology {
 
 /// Edge use and connected parts of a welded mesh without repeated-vertex triangles.
 Topology analyze_topology(const TriangleMesh& mesh);
+
+/// The two independent halves of analyze_topology, which may run on two threads at once:
+/// the edge counts (boundary, inconsistent, non-manifold) and the parts (parts,
+/// triangle_part). Each sets only its own fields of `topology`.
+void count_edge_uses(const TriangleMesh& mesh, Topology& topology);
+void find_parts(const TriangleMesh& mesh, Topology& topology);
 
 }  // namespace tumble::engine
