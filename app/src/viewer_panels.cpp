@@ -216,8 +216,21 @@ void Panels::integrator_section(Viewer& viewer) {
     }
     ImGui::EndCombo();
   }
-  ImGui::SetNextItemWidth(180.0f);
-  ImGui::InputDouble("dt (s)", &dt_, 0.0, 0.0, "%.6g");
+  // dt from a list of round values, or typed.
+  static constexpr double kStepChoices[] = {1e-4, 2e-4, 5e-4, 1e-3, 2e-3, 5e-3,
+                                            1e-2, 2e-2, 5e-2, 0.1};
+  ImGui::SetNextItemWidth(100.0f);
+  ImGui::InputDouble("##dt", &dt_, 0.0, 0.0, "%.6g");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(72.0f);
+  if (ImGui::BeginCombo("dt (s)", "list", ImGuiComboFlags_None)) {
+    for (double choice : kStepChoices) {
+      char label[32];
+      std::snprintf(label, sizeof label, "%g", choice);
+      if (ImGui::Selectable(label, choice == dt_)) dt_ = choice;
+    }
+    ImGui::EndCombo();
+  }
   ImGui::Checkbox("beside the current runs", &beside_);
   if (ImGui::Button("Apply (restart)")) {
     const std::string name = catalog[static_cast<std::size_t>(integrator_index_)].name;

@@ -233,6 +233,26 @@ TEST_F(ViewCommand, PanelButtonsPlayPauseAndReset) {
   EXPECT_EQ(changed_pixels(start, shot("reset.png"), kSceneRegion), 0u);
 }
 
+TEST_F(ViewCommand, IntegratorPanelAddsARunBeside) {
+  // Integrator section at 1280x720: the dt list at (1040, 223) with 0.01 at (1045, 350),
+  // "beside the current runs" at (927, 246), Apply at (973, 269).
+  const auto result = view(
+      "0.8 screenshot one_run.png\n"
+      "1.0 click 1040 223\n"
+      "1.3 click 1045 350\n"
+      "1.6 click 927 246\n"
+      "1.9 click 973 269\n"
+      "2.2 key space\n"
+      "3.2 screenshot two_runs.png\n"
+      "3.3 quit\n",
+      "--paused '" + demo() + "'");
+  ASSERT_EQ(result.status, 0) << result.err;
+  // The run beside is drawn in translucent green over the scene.
+  const auto green = [](int r, int g, int b) { return g > r + 40 && g > b + 40; };
+  EXPECT_EQ(count_pixels(shot("one_run.png"), kSceneRegion, green), 0u);
+  EXPECT_GT(count_pixels(shot("two_runs.png"), kSceneRegion, green), 1000u);
+}
+
 TEST_F(ViewCommand, RealKeyPressesFromXdotoolReachTheViewer) {
   // The script only takes screenshots; the keys come from the X server, through SDL's events.
   if (run_command("command -v xdotool").status != 0) {
