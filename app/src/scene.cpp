@@ -17,6 +17,7 @@
 #include "app/inspect_command.hpp"
 #include "app/json_field.hpp"
 #include "app/strict_json.hpp"
+#include "app/text_file.hpp"
 #include "engine/input_error.hpp"
 #include "engine/mesh_import.hpp"
 #include "engine/integrators.hpp"
@@ -270,16 +271,7 @@ std::optional<std::string> step_problem(double dt, double duration) {
 }
 
 SceneDescription load_scene(const std::filesystem::path& file) {
-  std::error_code error;
-  if (std::filesystem::is_directory(file, error)) {
-    throw InputError(file.string() + ": is a directory, expected a scene file (JSON)");
-  }
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file.string() + ": cannot open the scene file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError(file.string() + ": cannot read the scene file");
-  return parse_scene(text.str(), file);
+  return parse_scene(read_text_file(file, "scene file (JSON)"), file);
 }
 
 CompiledScene compile_scene(const SceneDescription& scene, bool keep_geometry) {

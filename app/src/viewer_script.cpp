@@ -7,6 +7,7 @@
 #include <sstream>
 #include <system_error>
 
+#include "app/text_file.hpp"
 #include "app/viewer_input.hpp"
 #include "engine/input_error.hpp"
 
@@ -253,15 +254,7 @@ std::vector<ScriptStep> parse_script(const std::string& text, const std::filesys
 }
 
 std::vector<ScriptStep> load_script(const std::filesystem::path& file) {
-  std::error_code error;
-  if (std::filesystem::is_directory(file, error)) {
-    throw InputError(file.string() + ": cannot read the script: it is a directory");
-  }
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file.string() + ": cannot read the script: no such readable file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_script(text.str(), file);
+  return parse_script(read_text_file(file, "script"), file);
 }
 
 ScriptPlayer::ScriptPlayer(std::vector<ScriptStep> steps) : steps_(std::move(steps)) {}

@@ -410,13 +410,13 @@ TEST(ViewerScript, MissingFileNamesIt) {
     load_script("/nonexistent/run.txt");
     FAIL() << "no error";
   } catch (const engine::InputError& error) {
-    EXPECT_THAT(error.what(), HasSubstr("/nonexistent/run.txt: cannot read the script"));
+    EXPECT_THAT(error.what(), HasSubstr("/nonexistent/run.txt: cannot open the script"));
   }
   try {
     load_script(testing::TempDir());
     FAIL() << "no error";
   } catch (const engine::InputError& error) {
-    EXPECT_THAT(error.what(), HasSubstr("cannot read the script: it is a directory"));
+    EXPECT_THAT(error.what(), HasSubstr(": is a directory, expected a script"));
   }
 }
 

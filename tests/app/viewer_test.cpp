@@ -22,6 +22,7 @@ namespace tumble::app::viewer {
 namespace {
 
 using ::testing::HasSubstr;
+using tumble::testing::directory_entries;
 
 /// A free brick drifting along +x at 0.5 m/s while it spins; dt = 5 ms.
 nlohmann::json drifting_brick() {
@@ -36,16 +37,6 @@ nlohmann::json drifting_brick() {
 }
 
 KeyEvent press(Key key, bool ctrl = false) { return KeyEvent{key, true, Modifiers{ctrl, false, false}}; }
-
-/// Files in `dir` (names only).
-std::vector<std::string> listing(const std::filesystem::path& dir) {
-  std::vector<std::string> names;
-  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-    names.push_back(entry.path().filename().string());
-  }
-  std::sort(names.begin(), names.end());
-  return names;
-}
 
 /// An image of one colour, to tell the scene image from the window image.
 render::Image solid(int width, int height, std::uint8_t grey) {
@@ -201,7 +192,7 @@ TEST_F(ViewerApp, KeysAreIgnoredWhileImGuiTakesTheKeyboard) {
   EXPECT_EQ(session.time(), time);
   // No screenshot was asked for: a drawn frame writes nothing.
   frame(0.0);
-  EXPECT_EQ(listing(dir_), std::vector<std::string>{"scene.json"});
+  EXPECT_EQ(directory_entries(dir_), std::vector<std::string>{"scene.json"});
 
   // Releases trigger nothing either.
   for (KeyEvent event : keys) {
@@ -263,7 +254,7 @@ TEST_F(ViewerApp, InformationNoticesFade) {
 
 TEST_F(ViewerApp, CtrlPWritesTheWindowImageAfterTheNextFrame) {
   key(Key::kP, true);
-  EXPECT_EQ(listing(dir_), std::vector<std::string>{"scene.json"});  // not before a frame
+  EXPECT_EQ(directory_entries(dir_), std::vector<std::string>{"scene.json"});  // not before a frame
   viewer_->update(0.1);
   const render::Image window = renderer_->render(viewer_->frame());
   const render::Image scene = solid(window.width, window.height, 10);
@@ -281,7 +272,7 @@ TEST_F(ViewerApp, CtrlPWritesTheWindowImageAfterTheNextFrame) {
   key(Key::kP, true);
   key(Key::kP, true);
   viewer_->frame_drawn(scene, window);
-  EXPECT_EQ(listing(dir_),
+  EXPECT_EQ(directory_entries(dir_),
             (std::vector<std::string>{"scene-1.png", "scene-2.png", "scene-3.png", "scene.json"}));
 }
 
@@ -291,7 +282,7 @@ TEST_F(ViewerApp, ScreenshotToAnUnwritablePathPostsAnErrorAndLeavesNothing) {
   viewer_->request_screenshot(target);
   frame(0.0);
   EXPECT_TRUE(has_error("screenshot " + target.string()));
-  EXPECT_EQ(listing(dir_), (std::vector<std::string>{"plain", "scene.json"}));
+  EXPECT_EQ(directory_entries(dir_), (std::vector<std::string>{"plain", "scene.json"}));
 }
 
 TEST_F(ViewerApp, RecordsAFrameEachThirtiethOfAWallSecond) {
@@ -354,7 +345,7 @@ TEST_F(ViewerApp, RecordingToAnUnwritablePlacePostsAnErrorAndLeavesNothing) {
   EXPECT_FALSE(viewer_->recording());
   EXPECT_TRUE(has_error("recording " + unknown.string()));
   frame(0.1);
-  EXPECT_EQ(listing(dir_), (std::vector<std::string>{"plain", "scene.json"}));
+  EXPECT_EQ(directory_entries(dir_), (std::vector<std::string>{"plain", "scene.json"}));
 }
 
 TEST_F(ViewerApp, FollowPutsTheTargetOnTheCentreOfMass) {

@@ -15,6 +15,8 @@
 namespace tumble::render {
 namespace {
 
+using tumble::testing::directory_entries;
+
 using ::testing::HasSubstr;
 using ::testing::ThrowsMessage;
 
@@ -36,16 +38,6 @@ std::vector<Image> turning_box_frames(int width = kWidth, int height = kHeight) 
     images.push_back(renderer.render(frame));
   }
   return images;
-}
-
-/// Names in a directory (to check that no temporary is left behind).
-std::vector<std::string> entries(const std::filesystem::path& dir) {
-  std::vector<std::string> names;
-  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-    names.push_back(entry.path().filename().string());
-  }
-  std::sort(names.begin(), names.end());
-  return names;
 }
 
 SinkOptions options(int width = kWidth, int height = kHeight) {
@@ -74,8 +66,8 @@ TEST(ImageSink, PngSequenceWritesEveryFrameExactly) {
     sink->finish();
     EXPECT_EQ(sink->frames(), static_cast<std::size_t>(kFrames));
   }
-  EXPECT_EQ(entries(dir), std::vector<std::string>{"frames"});
-  ASSERT_EQ(entries(dir / "frames").size(), static_cast<std::size_t>(kFrames));
+  EXPECT_EQ(directory_entries(dir), std::vector<std::string>{"frames"});
+  ASSERT_EQ(directory_entries(dir / "frames").size(), static_cast<std::size_t>(kFrames));
   for (int i = 0; i < kFrames; ++i) {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%06d.png", i);
@@ -95,7 +87,7 @@ TEST(ImageSink, UnfinishedPngSequenceLeavesNothing) {
     sink->write(images[0]);
     sink->write(images[1]);
   }
-  EXPECT_TRUE(entries(dir).empty());
+  EXPECT_TRUE(directory_entries(dir).empty());
   std::filesystem::remove_all(dir);
 }
 
@@ -117,7 +109,7 @@ TEST(ImageSink, Mp4IsH264WithEveryFrameAndMatchesThePngs) {
   auto sink = open_image_sink(dir / "out.mp4", options());
   for (const Image& image : images) sink->write(image);
   sink->finish();
-  EXPECT_EQ(entries(dir), std::vector<std::string>{"out.mp4"});
+  EXPECT_EQ(directory_entries(dir), std::vector<std::string>{"out.mp4"});
   EXPECT_EQ(probe(dir / "out.mp4"), "h264,96,64,12");
 
   // Decode frame 5 and compare with the rendered image (lossy yuv420p: small mean error).
@@ -144,7 +136,7 @@ TEST(ImageSink, WebmAndGifHaveEveryFrame) {
     for (const Image& image : images) sink->write(image);
     sink->finish();
   }
-  EXPECT_EQ(entries(dir), (std::vector<std::string>{"out.gif", "out.webm"}));
+  EXPECT_EQ(directory_entries(dir), (std::vector<std::string>{"out.gif", "out.webm"}));
   EXPECT_EQ(probe(dir / "out.webm"), "vp9,96,64,12");
   EXPECT_EQ(probe(dir / "out.gif"), "gif,96,64,12");
   std::filesystem::remove_all(dir);
@@ -157,7 +149,7 @@ TEST(ImageSink, UnfinishedVideoLeavesNothing) {
     auto sink = open_image_sink(dir / "out.mp4", options());
     for (const Image& image : images) sink->write(image);
   }
-  EXPECT_TRUE(entries(dir).empty());
+  EXPECT_TRUE(directory_entries(dir).empty());
   std::filesystem::remove_all(dir);
 }
 
@@ -202,7 +194,7 @@ TEST(ImageSink, FfmpegFailureIsOneLineAndLeavesNoFile) {
                                                          HasSubstr("width not divisible by 2"),
                                                          ::testing::Not(HasSubstr("\n")))));
   sink.reset();
-  EXPECT_TRUE(entries(dir).empty());
+  EXPECT_TRUE(directory_entries(dir).empty());
   std::filesystem::remove_all(dir);
 }
 
@@ -213,7 +205,7 @@ TEST(ImageSink, MissingFfmpegIsReportedAtOpen) {
   EXPECT_THAT([&] { open_image_sink(dir / "out.mp4", options()); },
               ThrowsMessage<std::runtime_error>(HasSubstr("ffmpeg not found on PATH")));
   ::setenv("PATH", path.c_str(), 1);
-  EXPECT_TRUE(entries(dir).empty());
+  EXPECT_TRUE(directory_entries(dir).empty());
   std::filesystem::remove_all(dir);
 }
 
@@ -224,7 +216,7 @@ TEST(ImageSink, WrongFrameSizeIsRejected) {
   EXPECT_THAT([&] { sink->write(small); },
               ThrowsMessage<std::invalid_argument>(HasSubstr("frame is 8x8, expected 96x64")));
   sink.reset();
-  EXPECT_TRUE(entries(dir).empty());
+  EXPECT_TRUE(directory_entries(dir).empty());
   std::filesystem::remove_all(dir);
 }
 
