@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <span>
 #include <system_error>
 #include <thread>
 
@@ -66,11 +67,21 @@ void collect(const aiScene& scene, const aiNode& node, const Eigen::Matrix4d& pa
     const aiMesh& mesh = *scene.mMeshes[node.mMeshes[m]];
     if (!(mesh.mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
     // Weld on assimp's own coordinates first: an STL soup shrinks about sixfold before it is
-    // widened to doubles and transformed.
-    const WeldMap weld = weld_positions<ai_real>(mesh.mNumVertices, [&](std::size_t v) {
-      const aiVector3D& p = mesh.mVertices[v];
-      return std::array<ai_real, 3>{p.x, p.y, p.z};
-    });
+    // widened to doubles and transformed. The normals assimp read (STL files carry them, 12
+    // bytes per vertex) are never used: the weld works in their memory, which assimp has
+    // already faulted in, rather than in fresh pages. The scene is discarded after this walk.
+    std::span<std::byte> scratch;
+    if (mesh.mNormals != nullptr) {
+      scratch = {reinterpret_cast<std::byte*>(mesh.mNormals),
+                 std::size_t{mesh.mNumVertices} * sizeof(aiVector3D)};
+    }
+    const WeldMap weld = weld_positions<ai_real>(
+        mesh.mNumVertices,
+        [&](std::size_t v) {
+          const aiVector3D& p = mesh.mVertices[v];
+          return std::array<ai_real, 3>{p.x, p.y, p.z};
+        },
+        scratch);
     welded_vertices += mesh.mNumVertices - weld.kept.size();
     ++placed;
     any_transform = any_transform || !identity;

@@ -23,6 +23,8 @@
 #include <limits>
 #include <memory>
 #include <numeric>
+#include <span>
+#include <type_traits>
 #include <stdexcept>
 #include <thread>
 #include <utility>
@@ -37,9 +39,11 @@ namespace tumble::engine {
 /// The outcome of welding `count` vertices.
 struct WeldMap {
   /// Welded index of each input vertex (`count` entries; an array, not a vector, so that its
-  /// 4 bytes per vertex are written once rather than zeroed first).
-  std::unique_ptr<std::uint32_t[]> new_index;
+  /// 4 bytes per vertex are written once rather than zeroed first). It points either into
+  /// `storage` or into the scratch memory given to weld_positions.
+  std::uint32_t* new_index = nullptr;
   std::vector<std::uint32_t> kept;  ///< input index of each welded vertex, ascending
+  std::unique_ptr<std::uint32_t[]> storage;  ///< new_index's memory when no scratch held it
 };
 
 namespace welding_detail {
@@ -78,6 +82,16 @@ std::uint32_t position_hash(const std::array<Bits<Scalar>, 3>& bits) {
   return static_cast<std::uint32_t>((h * 0x94d049bb133111ebull) >> 32);
 }
 
+/// Starts the lifetime of `count` objects of trivial type T at `memory` (no initialisation).
+template <typename T>
+T* reuse_as(std::byte* memory, std::size_t count) {
+  static_assert(std::is_trivially_default_constructible_v<T> &&
+                std::is_trivially_destructible_v<T>);
+  T* const objects = reinterpret_cast<T*>(memory);
+  std::uninitialized_default_construct_n(objects, count);
+  return objects;
+}
+
 }  // namespace welding_detail
 
 /// Asks the kernel to back the 2 MiB-aligned interior of a large buffer that is not yet touched
@@ -100,8 +114,15 @@ inline void advise_huge_pages(const void* data, std::size_t bytes) {
 /// Welds `count` vertices whose coordinates `position(i)` returns as std::array<Scalar, 3>.
 /// Vertices with bit-identical coordinates (-0 == +0) share one index; survivors keep their
 /// order of first appearance.
+///
+/// `scratch` (optional, 16-byte aligned, contents destroyed) is memory the caller no longer
+/// needs, such as the normals assimp read along with an STL's positions: the index map and the
+/// temporaries are placed in it as far as it goes, so that fewer fresh pages are faulted in
+/// (a million-triangle soup needs ~30 MB of them otherwise). The index map then lives in the
+/// scratch memory, and is valid as long as it is. The result does not depend on the scratch.
 template <typename Scalar, typename PositionOf>
-WeldMap weld_positions(std::size_t count, PositionOf position) {
+WeldMap weld_positions(std::size_t count, PositionOf position,
+                       std::span<std::byte> scratch = {}) {
   using namespace welding_detail;
   if (count >= std::numeric_limits<std::uint32_t>::max()) {
     throw std::length_error("weld_positions: more than 2^32 - 1 vertices");
@@ -133,10 +154,27 @@ WeldMap weld_positions(std::size_t count, PositionOf position) {
 
   // The output array holds, in turn: a link to an equal earlier vertex, the representative,
   // and the welded index. It is written before it is read, so it is not zeroed first.
+  // Scratch memory, when large enough, holds it first and then the candidates: the first
+  // thread's from the front of the rest, the second thread's from its back, so that the middle
+  // stays free for the partitioned records when the candidates take at most half of it.
   WeldMap map;
-  map.new_index = std::make_unique_for_overwrite<std::uint32_t[]>(count);
-  advise_huge_pages(map.new_index.get(), count * sizeof(std::uint32_t));
-  std::uint32_t* const index = map.new_index.get();
+  std::byte* free_scratch = nullptr;
+  std::size_t free_records = 0;  // records of Record<Scalar> that fit after the index map
+  if (!scratch.empty() && scratch.size() >= count * sizeof(std::uint32_t) &&
+      reinterpret_cast<std::uintptr_t>(scratch.data()) % alignof(Record<Scalar>) == 0) {
+    map.new_index = reuse_as<std::uint32_t>(scratch.data(), count);
+    constexpr std::size_t kAlign = alignof(Record<Scalar>);
+    const std::size_t index_bytes = (count * sizeof(std::uint32_t) + kAlign - 1) & ~(kAlign - 1);
+    if (scratch.size() > index_bytes) {
+      free_scratch = scratch.data() + index_bytes;
+      free_records = (scratch.size() - index_bytes) / sizeof(Record<Scalar>);
+    }
+  } else {
+    map.storage = std::make_unique_for_overwrite<std::uint32_t[]>(count);
+    advise_huge_pages(map.storage.get(), count * sizeof(std::uint32_t));
+    map.new_index = map.storage.get();
+  }
+  std::uint32_t* const index = map.new_index;
 
   // Pass 1, in input order: a small direct-mapped cache of recently seen positions catches
   // most duplicates where they are cheap to catch. Meshes list neighbouring triangles close
@@ -144,18 +182,35 @@ WeldMap weld_positions(std::size_t count, PositionOf position) {
   // vertex found in the cache is linked to the earlier vertex there; the others (every first
   // occurrence among them) become candidates for the exact grouping below. The cache only
   // decides how much work is left: the result is the same whatever it catches.
-  // Each thread writes its candidates at the start of its own slice of one array as large as
-  // the input; only the part written is ever touched.
-  const auto candidates = std::make_unique_for_overwrite<Record<Scalar>[]>(count);
-  advise_huge_pages(candidates.get(), count * sizeof(Record<Scalar>));
+  // Without scratch memory, each thread writes its candidates at the start of its own slice of
+  // one array as large as the input; only the part written is ever touched. With scratch
+  // memory, each thread has half of it (the second thread filling its half from the back);
+  // candidates beyond that go to a vector.
+  Record<Scalar>* in_scratch = nullptr;
+  std::unique_ptr<Record<Scalar>[]> candidates_storage;
+  const std::size_t half = free_records / 2;
+  if (half > 0) {
+    in_scratch = reuse_as<Record<Scalar>>(free_scratch, free_records);
+  } else {
+    candidates_storage = std::make_unique_for_overwrite<Record<Scalar>[]>(count);
+    advise_huge_pages(candidates_storage.get(), count * sizeof(Record<Scalar>));
+  }
   std::vector<std::size_t> candidates_end(threads);
+  std::vector<std::vector<Record<Scalar>>> overflow(threads);
   std::vector<std::vector<std::size_t>> counts(threads, std::vector<std::size_t>(partitions, 0));
   parallel([&](int thread) {
     const auto [first, last] = slice(thread);
+    // Candidates go to candidates[found], found counting up; in the second thread's half of
+    // the scratch, they go to candidates[-found], from its back.
+    Record<Scalar>* const candidates = in_scratch == nullptr ? candidates_storage.get()
+                                       : thread == 0     ? in_scratch
+                                                         : in_scratch + free_records - 1;
+    const std::ptrdiff_t step = in_scratch != nullptr && thread == 1 ? -1 : 1;
+    const std::size_t capacity = in_scratch == nullptr ? last : half;
     // 8192 slots (128 KiB of float records) stay in L2; small meshes get a smaller cache.
     const std::size_t cache_slots = std::min(std::size_t{1} << 13, std::bit_ceil(count));
     std::vector<Record<Scalar>> cache(cache_slots, Record<Scalar>{kNone, {}});
-    std::size_t found = first;
+    std::size_t found = in_scratch == nullptr ? first : 0;
     std::vector<std::size_t>& counted = counts[thread];
     for (std::size_t i = first; i < last; ++i) {
       const auto bits = bits_of(i);
@@ -167,7 +222,11 @@ WeldMap weld_positions(std::size_t count, PositionOf position) {
       }
       cached = {static_cast<std::uint32_t>(i), bits};
       index[i] = static_cast<std::uint32_t>(i);
-      candidates[found++] = cached;
+      if (found < capacity) {
+        candidates[static_cast<std::ptrdiff_t>(found++) * step] = cached;
+      } else {
+        overflow[thread].push_back(cached);
+      }
       ++counted[hash >> shift];
     }
     candidates_end[thread] = found;
@@ -187,13 +246,31 @@ WeldMap weld_positions(std::size_t count, PositionOf position) {
     start[part + 1] = offset;
   }
   const std::size_t candidate_count = start[partitions];
-  const auto records = std::make_unique_for_overwrite<Record<Scalar>[]>(candidate_count);
-  advise_huge_pages(records.get(), candidate_count * sizeof(Record<Scalar>));
+  // The records go between the two threads' candidates in the scratch memory when they fit.
+  std::unique_ptr<Record<Scalar>[]> records_storage;
+  Record<Scalar>* records = nullptr;
+  const std::size_t in_scratch_count = candidates_end[0] + (threads > 1 ? candidates_end[1] : 0);
+  if (in_scratch != nullptr && free_records - in_scratch_count >= candidate_count) {
+    records = in_scratch + candidates_end[0];
+  } else {
+    records_storage = std::make_unique_for_overwrite<Record<Scalar>[]>(candidate_count);
+    advise_huge_pages(records_storage.get(), candidate_count * sizeof(Record<Scalar>));
+    records = records_storage.get();
+  }
   parallel([&](int thread) {
     std::vector<std::size_t>& next = fill[thread];
-    for (std::size_t c = slice(thread).first; c < candidates_end[thread]; ++c) {
-      const Record<Scalar>& record = candidates[c];
+    const auto scatter = [&](const Record<Scalar>& record) {
       records[next[position_hash<Scalar>(record.bits) >> shift]++] = record;
+    };
+    if (in_scratch == nullptr) {
+      for (std::size_t c = slice(thread).first; c < candidates_end[thread]; ++c) {
+        scatter(candidates_storage[c]);
+      }
+    } else {
+      for (std::size_t c = 0; c < candidates_end[thread]; ++c) {
+        scatter(thread == 0 ? in_scratch[c] : in_scratch[free_records - 1 - c]);
+      }
+      for (const Record<Scalar>& record : overflow[thread]) scatter(record);
     }
   });
 
@@ -225,14 +302,16 @@ WeldMap weld_positions(std::size_t count, PositionOf position) {
   });
 
   // Pass 4, in input order: follow each cache link to its candidate's representative (the
-  // linked candidate is earlier in the same slice, so already resolved; a representative in
-  // another slice is itself and does not change), and count the survivors of each slice.
+  // linked candidate is earlier in the same slice, so already resolved; a link into an earlier
+  // slice is a representative itself, taken as it is rather than read while the other thread
+  // rewrites that slice), and count the survivors of each slice.
   std::vector<std::size_t> survivors(threads, 0);
   parallel([&](int thread) {
     const auto [first, last] = slice(thread);
     std::size_t kept = 0;
     for (std::size_t i = first; i < last; ++i) {
-      const std::uint32_t representative = index[index[i]];
+      const std::uint32_t link = index[i];
+      const std::uint32_t representative = link < first ? link : index[link];
       index[i] = representative;
       kept += representative == i ? 1 : 0;
     }
