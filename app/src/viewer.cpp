@@ -127,9 +127,13 @@ void Viewer::update(double wall_seconds) {
   });
 }
 
-render::DrawList Viewer::frame() { return session_.frame(camera_.camera(session_.reach())); }
+render::DrawList Viewer::frame() {
+  return session_.frame(camera_.camera(session_.reach()));
+}
 
-bool Viewer::wants_scene_image() const { return sink_ != nullptr; }
+bool Viewer::wants_scene_image() const {
+  return sink_ != nullptr;
+}
 
 void Viewer::frame_drawn(const render::Image& scene, const render::Image& window) {
   // Screenshots: what the window shows.
@@ -180,8 +184,7 @@ void Viewer::stop_recording() {
   std::unique_ptr<render::ImageSink> sink = std::move(sink_);
   try {
     sink->finish();
-    notify("recorded " + std::to_string(sink->frames()) + " frames to " +
-           recording_path_.string());
+    notify("recorded " + std::to_string(sink->frames()) + " frames to " + recording_path_.string());
   } catch (const std::exception& error) {
     notify("recording " + recording_path_.string() + ": " + error.what(), true);
   }

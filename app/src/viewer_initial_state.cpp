@@ -1,13 +1,12 @@
 #include "app/viewer_initial_state.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <variant>
-
-#include <Eigen/Geometry>
 
 namespace tumble::app::viewer {
 namespace {
@@ -52,8 +51,7 @@ void set_initial_omega(const engine::BodyModel& body, engine::BodyState& state,
   set_world_omega(body, state, world);
 }
 
-Eigen::Vector3d orientation_ypr_deg(const engine::BodyModel& body,
-                                    const engine::BodyState& state) {
+Eigen::Vector3d orientation_ypr_deg(const engine::BodyModel& body, const engine::BodyState& state) {
   // R = Rz(yaw) Ry(pitch) Rx(roll): R20 = -sin(pitch), R21 = cos(pitch) sin(roll),
   // R22 = cos(pitch) cos(roll), R10 = sin(yaw) cos(pitch), R00 = cos(yaw) cos(pitch).
   const Eigen::Matrix3d r = engine::body_orientation(body, state).toRotationMatrix();
@@ -91,8 +89,8 @@ void preset_principal_spin(const engine::BodyModel& body, engine::BodyState& sta
 }
 
 bool is_top(const engine::BodyModel& body) {
-  return body.pivoted && gravity_of(body).has_value() &&
-         gravity_of(body)->squaredNorm() > 0.0 && body.center_offset.squaredNorm() > 0.0;
+  return body.pivoted && gravity_of(body).has_value() && gravity_of(body)->squaredNorm() > 0.0 &&
+         body.center_offset.squaredNorm() > 0.0;
 }
 
 TopPose top_pose(const engine::BodyModel& body, const engine::BodyState& state) {

@@ -89,7 +89,8 @@ void plot(const std::vector<Series>& series, float height) {
     } else {
       // Each bucket's minimum and maximum, in the order they occur.
       for (int b = 0; b < buckets; ++b) {
-        const std::size_t first = n * static_cast<std::size_t>(b) / static_cast<std::size_t>(buckets);
+        const std::size_t first =
+            n * static_cast<std::size_t>(b) / static_cast<std::size_t>(buckets);
         const std::size_t last =
             n * static_cast<std::size_t>(b + 1) / static_cast<std::size_t>(buckets);
         std::size_t lo = first;
@@ -99,12 +100,13 @@ void plot(const std::vector<Series>& series, float height) {
           if (values[i] > values[hi]) hi = i;
         }
         for (std::size_t i : {std::min(lo, hi), std::max(lo, hi)}) {
-          points.push_back(to_screen(static_cast<double>(i) / static_cast<double>(n - 1), values[i]));
+          points.push_back(
+              to_screen(static_cast<double>(i) / static_cast<double>(n - 1), values[i]));
         }
       }
     }
-    draw->AddPolyline(points.data(), static_cast<int>(points.size()), line.colour,
-                      ImDrawFlags_None, 1.0f);
+    draw->AddPolyline(points.data(), static_cast<int>(points.size()), line.colour, ImDrawFlags_None,
+                      1.0f);
   }
 }
 
@@ -117,8 +119,7 @@ void Panels::draw(Viewer& viewer, const FrameStats& stats, int width, int height
   ImGui::SetNextWindowSize(ImVec2(kPanelWidth, static_cast<float>(height) - 20.0f),
                            ImGuiCond_Always);
   ImGui::Begin("tumble view", nullptr,
-               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
-                   ImGuiWindowFlags_NoCollapse);
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
   simulation_section(viewer, stats);
   if (!viewer.session().empty()) {
     integrator_section(viewer);
@@ -170,8 +171,9 @@ void Panels::sync(const Viewer& viewer) {
 void Panels::simulation_section(Viewer& viewer, const FrameStats& stats) {
   Session& session = viewer.session();
   if (session.empty()) {
-    ImGui::TextWrapped("Nothing open. Open a scene (.json) or a mesh below, or drop a file on "
-                       "the window.");
+    ImGui::TextWrapped(
+        "Nothing open. Open a scene (.json) or a mesh below, or drop a file on "
+        "the window.");
     return;
   }
   ImGui::TextWrapped("%s", session.scene().name.c_str());
@@ -217,8 +219,8 @@ void Panels::integrator_section(Viewer& viewer) {
     ImGui::EndCombo();
   }
   // dt from a list of round values, or typed.
-  static constexpr double kStepChoices[] = {1e-4, 2e-4, 5e-4, 1e-3, 2e-3, 5e-3,
-                                            1e-2, 2e-2, 5e-2, 0.1};
+  static constexpr double kStepChoices[] = {1e-4, 2e-4, 5e-4, 1e-3, 2e-3,
+                                            5e-3, 1e-2, 2e-2, 5e-2, 0.1};
   ImGui::SetNextItemWidth(100.0f);
   ImGui::InputDouble("##dt", &dt_, 0.0, 0.0, "%.6g");
   ImGui::SameLine();
@@ -273,8 +275,8 @@ void Panels::initial_state_section(Viewer& viewer) {
   omega_frame_ = frame == 1 ? VectorFrame::kBody : VectorFrame::kWorld;
   ImGui::InputScalarN("w (rad/s)", ImGuiDataType_Double, omega_.data(), 3, nullptr, nullptr,
                       "%.4g");
-  ImGui::InputScalarN("yaw pitch roll", ImGuiDataType_Double, ypr_deg_.data(), 3, nullptr,
-                      nullptr, "%.2f");
+  ImGui::InputScalarN("yaw pitch roll", ImGuiDataType_Double, ypr_deg_.data(), 3, nullptr, nullptr,
+                      "%.2f");
   const auto apply = [&](const engine::BodyState& state) {
     try {
       session.set_initial_state(body, state);
@@ -408,7 +410,8 @@ void Panels::plots_section(Viewer& viewer) {
         {"y", &history.omega[1], IM_COL32(100, 220, 100, 255)},
         {"z", &history.omega[2], IM_COL32(100, 150, 255, 255)}},
        80.0f);
-  if (viewer.selected_body != session.plotted_body()) session.set_plotted_body(viewer.selected_body);
+  if (viewer.selected_body != session.plotted_body())
+    session.set_plotted_body(viewer.selected_body);
 }
 
 void Panels::files_section(Viewer& viewer) {
@@ -446,9 +449,9 @@ void Panels::help_window(Viewer& viewer, int width, int height) {
                           ImGuiCond_Always, ImVec2(0.5f, 0.5f));
   ImGui::SetNextWindowBgAlpha(0.92f);
   bool open = true;
-  ImGui::Begin("Keys", &open,
-               ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove |
-                   ImGuiWindowFlags_NoCollapse);
+  ImGui::Begin(
+      "Keys", &open,
+      ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse);
   for (const std::string& line : shortcut_help()) ImGui::TextUnformatted(line.c_str());
   ImGui::Separator();
   ImGui::TextUnformatted("Mouse: drag to orbit, wheel to zoom (not over a panel).");

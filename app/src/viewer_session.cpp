@@ -37,7 +37,8 @@ std::string number(const char* format, double value) {
 
 /// Keeps the newest `length` values.
 void trim(std::vector<float>& values, std::size_t length) {
-  if (values.size() > length) values.erase(values.begin(), values.end() - static_cast<long>(length));
+  if (values.size() > length)
+    values.erase(values.begin(), values.end() - static_cast<long>(length));
 }
 
 /// A point fixed in each body to trail when the scene names none: the mesh vertex farthest
@@ -202,12 +203,14 @@ void Session::rebuild(const std::vector<RunSpec>& specs) {
   built_with_ellipsoid_ = show_.inertia_ellipsoid;
   for (std::size_t k = 0; k < runs.size(); ++k) {
     compiled_.settings = settings[k];  // the builder's overlay names the run's integrator and dt
-    runs[k].builder = std::make_unique<FrameBuilder>(scene_, compiled_, builder_settings, renderer_);
+    runs[k].builder =
+        std::make_unique<FrameBuilder>(scene_, compiled_, builder_settings, renderer_);
     runs[k].builder->observe(*runs[k].simulation);
   }
   compiled_.settings = scene_settings;
   runs_ = std::move(runs);
-  if (!runs_.empty()) scene_camera_ = runs_.front().builder->build(*runs_.front().simulation).camera;
+  if (!runs_.empty())
+    scene_camera_ = runs_.front().builder->build(*runs_.front().simulation).camera;
 
   // Clock and plots start again.
   ++generation_;
@@ -284,7 +287,9 @@ void Session::reset() {
   rebuild(specs());
 }
 
-double Session::time() const { return runs_.empty() ? 0.0 : runs_.front().simulation->time(); }
+double Session::time() const {
+  return runs_.empty() ? 0.0 : runs_.front().simulation->time();
+}
 
 bool Session::finished() const {
   return !runs_.empty() && runs_.front().simulation->finished();
@@ -293,8 +298,12 @@ bool Session::finished() const {
 const engine::Simulation& Session::simulation(std::size_t run) const {
   return *runs_.at(run).simulation;
 }
-const std::string& Session::integrator(std::size_t run) const { return runs_.at(run).integrator; }
-double Session::dt(std::size_t run) const { return runs_.at(run).dt; }
+const std::string& Session::integrator(std::size_t run) const {
+  return runs_.at(run).integrator;
+}
+double Session::dt(std::size_t run) const {
+  return runs_.at(run).dt;
+}
 
 std::optional<std::string> Session::set_integrator(const std::string& integrator, double dt,
                                                    bool beside) {
@@ -340,7 +349,9 @@ void Session::set_initial_state(std::size_t body, const engine::BodyState& state
   }
 }
 
-double Session::reach() const { return runs_.empty() ? 1.0 : runs_.front().builder->reach(); }
+double Session::reach() const {
+  return runs_.empty() ? 1.0 : runs_.front().builder->reach();
+}
 
 render::DrawList Session::frame(const render::Camera& camera) {
   if (runs_.empty()) {
@@ -363,8 +374,8 @@ render::DrawList Session::frame(const render::Camera& camera) {
   legend.title = "runs";
   legend.width_px = 300.0f;
   legend.position_px = Eigen::Vector2f(12.0f, static_cast<float>(renderer_.height()) - 140.0f);
-  legend.lines.push_back("solid: " + runs_.front().integrator + ", dt = " +
-                         number("%g", runs_.front().dt) + " s");
+  legend.lines.push_back("solid: " + runs_.front().integrator +
+                         ", dt = " + number("%g", runs_.front().dt) + " s");
   ShowSettings bodies_only;
   bodies_only.angular_velocity = false;
   bodies_only.angular_momentum = false;
@@ -376,8 +387,8 @@ render::DrawList Session::frame(const render::Camera& camera) {
       mesh.colour = colour.colour;
       list.meshes.push_back(mesh);
     }
-    std::string line = std::string(colour.name) + ": " + runs_[k].integrator + ", dt = " +
-                       number("%g", runs_[k].dt) + " s";
+    std::string line = std::string(colour.name) + ": " + runs_[k].integrator +
+                       ", dt = " + number("%g", runs_[k].dt) + " s";
     if (const auto& blow_up = runs_[k].simulation->blow_up()) {
       line += number(" (blew up at t = %.4g s)", blow_up->time);
     }
@@ -423,8 +434,8 @@ void Session::record_history() {
   history_.momentum_drift.push_back(
       static_cast<float>((momentum - initial_momentum_) / momentum_scale_));
   const std::size_t body = std::min(plotted_body_, simulation.bodies().size() - 1);
-  const Eigen::Vector3d omega = initial_omega(simulation.bodies()[body],
-                                              simulation.states()[body], VectorFrame::kBody);
+  const Eigen::Vector3d omega =
+      initial_omega(simulation.bodies()[body], simulation.states()[body], VectorFrame::kBody);
   for (int a = 0; a < 3; ++a) history_.omega[a].push_back(static_cast<float>(omega[a]));
 
   // Drop the oldest samples in chunks (amortised constant time per sample).
@@ -446,8 +457,8 @@ std::string Session::inspector_text(std::size_t body) const {
   text << model.name << ": inertia given in the scene\n"
        << "mass              " << number("%.6g", model.mass) << " kg\n"
        << "principal moments " << number("%.6g", model.moments[0]) << ", "
-       << number("%.6g", model.moments[1]) << ", " << number("%.6g", model.moments[2])
-       << " kg m^2" << (model.pivoted ? " (about the pivot)" : "") << "\n";
+       << number("%.6g", model.moments[1]) << ", " << number("%.6g", model.moments[2]) << " kg m^2"
+       << (model.pivoted ? " (about the pivot)" : "") << "\n";
   return text.str();
 }
 

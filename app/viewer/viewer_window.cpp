@@ -47,29 +47,52 @@ Key key_from_sdl(SDL_Keycode code) {
     return static_cast<Key>(static_cast<int>(Key::k0) + static_cast<int>(code - SDLK_0));
   }
   switch (code) {
-    case SDLK_SPACE: return Key::kSpace;
-    case SDLK_RETURN: return Key::kEnter;
-    case SDLK_KP_ENTER: return Key::kEnter;
-    case SDLK_ESCAPE: return Key::kEscape;
-    case SDLK_TAB: return Key::kTab;
-    case SDLK_BACKSPACE: return Key::kBackspace;
-    case SDLK_DELETE: return Key::kDelete;
-    case SDLK_INSERT: return Key::kInsert;
-    case SDLK_LEFT: return Key::kLeft;
-    case SDLK_RIGHT: return Key::kRight;
-    case SDLK_UP: return Key::kUp;
-    case SDLK_DOWN: return Key::kDown;
-    case SDLK_HOME: return Key::kHome;
-    case SDLK_END: return Key::kEnd;
-    case SDLK_PAGEUP: return Key::kPageUp;
-    case SDLK_PAGEDOWN: return Key::kPageDown;
-    case SDLK_MINUS: return Key::kMinus;
-    case SDLK_KP_MINUS: return Key::kMinus;
-    case SDLK_EQUALS: return Key::kEquals;
-    case SDLK_PLUS: return Key::kEquals;
-    case SDLK_KP_PLUS: return Key::kEquals;
-    case SDLK_F1: return Key::kF1;
-    default: return Key::kUnknown;
+    case SDLK_SPACE:
+      return Key::kSpace;
+    case SDLK_RETURN:
+      return Key::kEnter;
+    case SDLK_KP_ENTER:
+      return Key::kEnter;
+    case SDLK_ESCAPE:
+      return Key::kEscape;
+    case SDLK_TAB:
+      return Key::kTab;
+    case SDLK_BACKSPACE:
+      return Key::kBackspace;
+    case SDLK_DELETE:
+      return Key::kDelete;
+    case SDLK_INSERT:
+      return Key::kInsert;
+    case SDLK_LEFT:
+      return Key::kLeft;
+    case SDLK_RIGHT:
+      return Key::kRight;
+    case SDLK_UP:
+      return Key::kUp;
+    case SDLK_DOWN:
+      return Key::kDown;
+    case SDLK_HOME:
+      return Key::kHome;
+    case SDLK_END:
+      return Key::kEnd;
+    case SDLK_PAGEUP:
+      return Key::kPageUp;
+    case SDLK_PAGEDOWN:
+      return Key::kPageDown;
+    case SDLK_MINUS:
+      return Key::kMinus;
+    case SDLK_KP_MINUS:
+      return Key::kMinus;
+    case SDLK_EQUALS:
+      return Key::kEquals;
+    case SDLK_PLUS:
+      return Key::kEquals;
+    case SDLK_KP_PLUS:
+      return Key::kEquals;
+    case SDLK_F1:
+      return Key::kF1;
+    default:
+      return Key::kUnknown;
   }
 }
 
@@ -162,7 +185,9 @@ class FrameClock {
 
 }  // namespace
 
-bool viewer_available() { return true; }
+bool viewer_available() {
+  return true;
+}
 
 int run_view(const ViewOptions& options, std::ostream& out, std::ostream& err) {
   // Options first: nothing opens for a mistake.
@@ -239,8 +264,8 @@ int run_view(const ViewOptions& options, std::ostream& out, std::ostream& err) {
       viewer.notify(*error, true);
     }
   } else if (file && options.dt && !viewer.session().empty()) {
-    if (auto error = viewer.session().set_integrator(viewer.session().integrator(), *options.dt,
-                                                     false)) {
+    if (auto error =
+            viewer.session().set_integrator(viewer.session().integrator(), *options.dt, false)) {
       viewer.notify(*error, true);
     }
   }
@@ -320,7 +345,8 @@ int run_view(const ViewOptions& options, std::ostream& out, std::ostream& err) {
     out << "tumble view: " << frame_clock.count() << " frames in " << seconds << " s ("
         << static_cast<double>(frame_clock.count()) / seconds << " frames/s); frame time median "
         << median << " ms, 95th percentile " << p95 << " ms; real-time factor "
-        << (played_wall > 0.0 ? played_simulated / played_wall : 0.0) << " at time scale " << viewer.session().time_scale() << "\n";
+        << (played_wall > 0.0 ? played_simulated / played_wall : 0.0) << " at time scale "
+        << viewer.session().time_scale() << "\n";
   }
   // Errors still shown when the window closed go to the terminal too.
   for (const viewer::Notice& notice : viewer.notices()) {

@@ -1,10 +1,11 @@
 #include "render/imgui_layer.hpp"
 
 #include <imgui.h>
-#include "backends/imgui_impl_opengl3.h"
 
 #include <stdexcept>
 #include <utility>
+
+#include "backends/imgui_impl_opengl3.h"
 
 namespace tumble::render {
 

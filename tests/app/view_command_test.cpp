@@ -66,7 +66,9 @@ std::size_t count_pixels(const render::Image& image, Region region, Test test) {
 }
 
 /// The T-handle's orange (shaded): red well above blue. The background gradient is grey-blue.
-bool orange(int r, int, int b) { return r > 120 && r - b > 70; }
+bool orange(int r, int, int b) {
+  return r > 120 && r - b > 70;
+}
 /// ImGui's dark panels: dark and nearly grey (the view's background is a light grey-blue
 /// gradient, the body orange to brown).
 bool dark(int r, int g, int b) {
@@ -198,9 +200,11 @@ TEST_F(ViewCommand, ABadDroppedFileShowsAnErrorAndTheViewerKeepsRunning) {
       "0.5 drop missing_mesh.stl\n"
       "0.8 drop broken.obj\n"
       "1.2 screenshot after.png\n"
-      "1.4 drop " + std::string(TUMBLE_SOURCE_DIR) + "/assets/meshes/tennis_racket.obj\n"
-      "2.0 screenshot racket.png\n"
-      "2.2 quit\n",
+      "1.4 drop " +
+          std::string(TUMBLE_SOURCE_DIR) +
+          "/assets/meshes/tennis_racket.obj\n"
+          "2.0 screenshot racket.png\n"
+          "2.2 quit\n",
       "'" + demo() + "'");
   ASSERT_EQ(result.status, 0) << result.err;
   // The errors stayed in the window until it closed, and are repeated on stderr then.
@@ -266,10 +270,10 @@ TEST_F(ViewCommand, RealKeyPressesFromXdotoolReachTheViewer) {
   const std::string keys =
       "sleep 2.5; xdotool search --sync --name '^tumble view$' windowfocus --sync key space; "
       "sleep 1; xdotool search --name '^tumble view$' windowfocus --sync key ctrl+p";
-  const auto result = run_command(
-      "cd '" + dir_.string() + "' && xvfb-run -a -s '-screen 0 1280x800x24' sh -c \"'" +
-      tumble_executable() + "' view '" + demo() +
-      "' --script script.txt --output-dir . </dev/null & " + keys + "; wait\"");
+  const auto result =
+      run_command("cd '" + dir_.string() + "' && xvfb-run -a -s '-screen 0 1280x800x24' sh -c \"'" +
+                  tumble_executable() + "' view '" + demo() +
+                  "' --script script.txt --output-dir . </dev/null & " + keys + "; wait\"");
   ASSERT_EQ(result.status, 0) << result.err;
   const render::Image paused1 = shot("paused1.png");
   EXPECT_EQ(changed_pixels(paused1, shot("paused2.png"), kSceneRegion), 0u);

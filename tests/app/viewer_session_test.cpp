@@ -9,10 +9,9 @@
 #include <fstream>
 #include <limits>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "app/inspect_command.hpp"
 #include "app/viewer_initial_state.hpp"
@@ -72,7 +71,8 @@ class ViewerSession : public testing::CommandTest {
   }
 
   /// A session with `scene` (written to the test's folder) open.
-  std::unique_ptr<Session> open(const nlohmann::json& scene, const std::string& name = "scene.json") {
+  std::unique_ptr<Session> open(const nlohmann::json& scene,
+                                const std::string& name = "scene.json") {
     auto session = std::make_unique<Session>(*renderer_);
     const auto error = session->open(write_scene(scene, name));
     EXPECT_FALSE(error) << *error;
@@ -109,7 +109,8 @@ TEST_F(ViewerSession, EmptySessionIgnoresTheClock) {
   session.reset();
   EXPECT_EQ(session.time(), 0.0);
   EXPECT_FALSE(session.finished());
-  EXPECT_THAT(session.set_integrator("rk4", 0.01, false).value_or(""), HasSubstr("nothing is open"));
+  EXPECT_THAT(session.set_integrator("rk4", 0.01, false).value_or(""),
+              HasSubstr("nothing is open"));
 }
 
 // --- Clock ---------------------------------------------------------------------------------------

@@ -9,10 +9,9 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "render/png_io.hpp"
 #include "render/renderer.hpp"
@@ -36,7 +35,9 @@ nlohmann::json drifting_brick() {
              {"angular_velocity", {0.1, 2.0, 0.1}}}}}};
 }
 
-KeyEvent press(Key key, bool ctrl = false) { return KeyEvent{key, true, Modifiers{ctrl, false, false}}; }
+KeyEvent press(Key key, bool ctrl = false) {
+  return KeyEvent{key, true, Modifiers{ctrl, false, false}};
+}
 
 /// An image of one colour, to tell the scene image from the window image.
 render::Image solid(int width, int height, std::uint8_t grey) {
@@ -172,11 +173,10 @@ TEST_F(ViewerApp, SpaceAtTheEndPlaysFromTheStart) {
 
 TEST_F(ViewerApp, KeysAreIgnoredWhileImGuiTakesTheKeyboard) {
   Session& session = viewer_->session();
-  const std::vector<KeyEvent> keys = {press(Key::kSpace),  press(Key::kRight),
-                                      press(Key::kMinus),  press(Key::kEquals),
-                                      press(Key::kF1),     press(Key::kEscape),
-                                      press(Key::kP, true), press(Key::kR, true),
-                                      press(Key::kO, true), press(Key::kQ, true)};
+  const std::vector<KeyEvent> keys = {
+      press(Key::kSpace),   press(Key::kRight),  press(Key::kMinus),   press(Key::kEquals),
+      press(Key::kF1),      press(Key::kEscape), press(Key::kP, true), press(Key::kR, true),
+      press(Key::kO, true), press(Key::kQ, true)};
   viewer_->update(0.1);
   const double time = session.time();
   for (const KeyEvent& event : keys) viewer_->handle(event, true, false);
@@ -302,8 +302,7 @@ TEST_F(ViewerApp, RecordsAFrameEachThirtiethOfAWallSecond) {
   viewer_->stop_recording();
   EXPECT_FALSE(viewer_->recording());
   EXPECT_FALSE(viewer_->wants_scene_image());
-  EXPECT_EQ(viewer_->notices().back().text,
-            "recorded 31 frames to " + frames.string() + "/");
+  EXPECT_EQ(viewer_->notices().back().text, "recorded 31 frames to " + frames.string() + "/");
   std::size_t count = 0;
   for (const auto& entry : std::filesystem::directory_iterator(frames)) {
     (void)entry;

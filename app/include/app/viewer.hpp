@@ -85,10 +85,10 @@ class Viewer {
 
   // --- What the panels show and edit ------------------------------------------------------------
   bool help_shown = false;
-  bool follow = false;          ///< camera target on `follow_body`'s centre of mass
+  bool follow = false;  ///< camera target on `follow_body`'s centre of mass
   std::size_t follow_body = 0;
   std::size_t selected_body = 0;  ///< the inspector's and the initial-state editor's body
-  bool open_requested = false;   ///< Ctrl+O: the panel focuses its file field
+  bool open_requested = false;    ///< Ctrl+O: the panel focuses its file field
   bool quit_requested() const { return quit_; }
   /// Back to the camera a render of the scene starts with.
   void reset_camera();

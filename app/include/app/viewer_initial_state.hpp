@@ -4,9 +4,8 @@
 /// the "spin about principal axis k with a small perturbation" presets. Every setter keeps the
 /// engine's state consistent (world angular momentum from w, pivot kinematics).
 
-#include <cstddef>
-
 #include <Eigen/Core>
+#include <cstddef>
 
 #include "app/scene.hpp"
 #include "engine/rigid_body.hpp"

@@ -185,7 +185,7 @@ class Session {
   double time_scale_ = 1.0;
   double target_time_ = 0.0;
   double real_time_factor_ = 0.0;
-  double rate_wall_ = 0.0;  ///< wall seconds in the current real-time-factor window
+  double rate_wall_ = 0.0;   ///< wall seconds in the current real-time-factor window
   double rate_start_ = 0.0;  ///< simulated time at its start
 
   std::size_t generation_ = 0;
