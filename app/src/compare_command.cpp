@@ -83,15 +83,9 @@ struct Run {
 /// The `tumble render` options of one run.
 RenderOptions run_options(const CompareOptions& options, const std::string& integrator) {
   RenderOptions run;
-  run.scene = options.scene;
-  run.output = options.output;
-  run.size = options.size;
-  run.fps = options.fps;
-  run.frames = options.frames;
-  run.time_scale = options.time_scale;
+  static_cast<VideoOptions&>(run) = options;
   run.integrator = integrator;
   run.dt = options.dt;
-  run.quiet = options.quiet;
   return run;
 }
 
@@ -307,11 +301,9 @@ CLI::App& add_compare_command(CLI::App& cli, CompareOptions& options) {
       "last good state and says when. Exit status: 0 done, 1 bad scene/option/output or ffmpeg "
       "failure, 3 some run blew up (the output is still complete), 130 interrupted (nothing "
       "written).");
-  compare
-      .add_option_function<std::string>(
-          "SCENE", [&](const std::string& value) { options.scene = value; }, "Scene file (JSON)")
-      ->required()
-      ->type_name("FILE");
+  add_video_options(
+      compare, options,
+      "Size WxH of the whole frame in pixels (default 1280x720; even for .mp4/.webm)");
   compare
       .add_option_function<std::string>(
           "--integrators", [&](const std::string& value) { options.integrators = value; },
@@ -319,13 +311,6 @@ CLI::App& add_compare_command(CLI::App& cli, CompareOptions& options) {
           "--list-integrators)")
       ->required()
       ->type_name("A,B,...");
-  compare
-      .add_option_function<std::string>(
-          "-o,--output", [&](const std::string& value) { options.output = value; },
-          "A .mp4 (H.264), .webm (VP9) or .gif file, or a directory ending in '/' for "
-          "frame_000000.png, ...")
-      ->required()
-      ->type_name("OUTPUT");
   compare
       .add_option_function<std::string>(
           "--layout", [&](const std::string& value) { options.layout = value; },
@@ -336,28 +321,6 @@ CLI::App& add_compare_command(CLI::App& cli, CompareOptions& options) {
           "--dt", [&](double value) { options.dt = value; },
           "Time step H in seconds of every run (default: the scene's)")
       ->type_name("H");
-  compare
-      .add_option_function<std::string>(
-          "--size", [&](const std::string& value) { options.size = value; },
-          "Size WxH of the whole frame in pixels (default 1280x720; even for .mp4/.webm)")
-      ->type_name("WxH");
-  compare
-      .add_option_function<double>(
-          "--fps", [&](double value) { options.fps = value; },
-          "Video frames per second N (default 30)")
-      ->type_name("N");
-  compare
-      .add_option_function<double>(
-          "--time-scale", [&](double value) { options.time_scale = value; },
-          "Simulated seconds per second of video S (default 1)")
-      ->type_name("S");
-  compare
-      .add_option_function<std::string>(
-          "--frames", [&](const std::string& value) { options.frames = value; },
-          "Render only frames A:B, half-open (as tumble render)")
-      ->type_name("A:B");
-  compare.add_flag("-q,--quiet", options.quiet,
-                   "No progress bar and no summary line (warnings and errors still print)");
   return compare;
 }
 

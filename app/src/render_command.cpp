@@ -229,39 +229,9 @@ CLI::App& add_render_command(CLI::App& cli, RenderOptions& options) {
       "status: 0 done, 1 bad scene/option/output or ffmpeg failure, 3 the run blew up (the "
       "output is still written, holding the last good state), 130 interrupted (nothing "
       "written).");
-  render
-      .add_option_function<std::string>(
-          "SCENE", [&](const std::string& value) { options.scene = value; }, "Scene file (JSON)")
-      ->required()
-      ->type_name("FILE");
-  render
-      .add_option_function<std::string>(
-          "-o,--output", [&](const std::string& value) { options.output = value; },
-          "A .mp4 (H.264), .webm (VP9) or .gif file, or a directory ending in '/' for "
-          "frame_000000.png, ...")
-      ->required()
-      ->type_name("OUTPUT");
-  render
-      .add_option_function<std::string>(
-          "--size", [&](const std::string& value) { options.size = value; },
-          "Image size WxH in pixels, e.g. 1280x720 (default 1280x720; even for .mp4/.webm)")
-      ->type_name("WxH");
-  render
-      .add_option_function<double>(
-          "--fps", [&](double value) { options.fps = value; },
-          "Video frames per second N (default 30)")
-      ->type_name("N");
-  render
-      .add_option_function<std::string>(
-          "--frames", [&](const std::string& value) { options.frames = value; },
-          "Render only frames A:B, half-open (A to B-1, counted from 0; A: and :B allowed); they "
-          "equal the same frames of a full render, and PNG files keep their frame numbers")
-      ->type_name("A:B");
-  render
-      .add_option_function<double>(
-          "--time-scale", [&](double value) { options.time_scale = value; },
-          "Simulated seconds per second of video S (default 1; 0.5 is slow motion)")
-      ->type_name("S");
+  add_video_options(
+      render, options,
+      "Image size WxH in pixels, e.g. 1280x720 (default 1280x720; even for .mp4/.webm)");
   render
       .add_option_function<std::string>(
           "--integrator", [&](const std::string& value) { options.integrator = value; },
@@ -278,9 +248,44 @@ CLI::App& add_render_command(CLI::App& cli, RenderOptions& options) {
       ->type_name("N");
   render.add_flag("--no-overlay", options.no_overlay,
                   "No text or plots: title, integrator, time and drift plots are left out");
-  render.add_flag("-q,--quiet", options.quiet,
-                  "No progress bar and no summary line (warnings and errors still print)");
   return render;
+}
+
+void add_video_options(CLI::App& command, VideoOptions& options, const std::string& size_help) {
+  command
+      .add_option_function<std::string>(
+          "SCENE", [&](const std::string& value) { options.scene = value; }, "Scene file (JSON)")
+      ->required()
+      ->type_name("FILE");
+  command
+      .add_option_function<std::string>(
+          "-o,--output", [&](const std::string& value) { options.output = value; },
+          "A .mp4 (H.264), .webm (VP9) or .gif file, or a directory ending in '/' for "
+          "frame_000000.png, ...")
+      ->required()
+      ->type_name("OUTPUT");
+  command
+      .add_option_function<std::string>(
+          "--size", [&](const std::string& value) { options.size = value; }, size_help)
+      ->type_name("WxH");
+  command
+      .add_option_function<double>(
+          "--fps", [&](double value) { options.fps = value; },
+          "Video frames per second N (default 30)")
+      ->type_name("N");
+  command
+      .add_option_function<std::string>(
+          "--frames", [&](const std::string& value) { options.frames = value; },
+          "Render only frames A:B, half-open (A to B-1, counted from 0; A: and :B allowed); they "
+          "equal the same frames of a full render, and PNG files keep their frame numbers")
+      ->type_name("A:B");
+  command
+      .add_option_function<double>(
+          "--time-scale", [&](double value) { options.time_scale = value; },
+          "Simulated seconds per second of video S (default 1; 0.5 is slow motion)")
+      ->type_name("S");
+  command.add_flag("-q,--quiet", options.quiet,
+                   "No progress bar and no summary line (warnings and errors still print)");
 }
 
 std::size_t frame_count(double duration, double fps, double time_scale) {

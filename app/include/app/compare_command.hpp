@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "app/render_command.hpp"
+
 namespace CLI {
 class App;
 }  // namespace CLI
@@ -28,17 +30,11 @@ namespace tumble::app {
 enum class CompareLayout { kGrid, kOverlay };
 
 /// What `tumble compare` was asked to do. Options given here override the scene.
-struct CompareOptions {
-  std::filesystem::path scene;
-  std::filesystem::path output;             ///< "dir/" (PNG sequence), .mp4, .webm or .gif
-  std::string integrators;                  ///< "a,b,c": at least two, all different
-  std::string layout = "grid";              ///< "grid" or "overlay"
-  std::optional<double> dt;                 ///< common time step of every run
-  std::optional<std::string> size;          ///< "WIDTHxHEIGHT" of the whole frame
-  std::optional<double> fps;                ///< video frames per second
-  std::optional<std::string> frames;        ///< "A:B", half-open
-  std::optional<double> time_scale;         ///< simulated seconds per second of video
-  bool quiet = false;
+/// (`size` is that of the whole frame.)
+struct CompareOptions : VideoOptions {
+  std::string integrators;      ///< "a,b,c": at least two, all different
+  std::string layout = "grid";  ///< "grid" or "overlay"
+  std::optional<double> dt;     ///< common time step of every run
 };
 
 /// Adds the `compare` subcommand and its options to `cli`, filling `options` when parsed.

@@ -41,19 +41,27 @@ namespace tumble::app {
 /// output path, ffmpeg), 3 when the run blew up (the video is still written, to the end).
 inline constexpr int kExitInterrupted = 130;
 
-/// What `tumble render` was asked to do. Options given here override the scene.
-struct RenderOptions {
+/// What the commands that write a video of a scene (`render`, `compare`) are asked alike.
+struct VideoOptions {
   std::filesystem::path scene;
   std::filesystem::path output;       ///< "dir/" (PNG sequence), .mp4, .webm or .gif
   std::optional<std::string> size;    ///< "WIDTHxHEIGHT"
   std::optional<double> fps;          ///< video frames per second
   std::optional<std::string> frames;  ///< "A:B", half-open
   std::optional<double> time_scale;   ///< simulated seconds per second of video
+  bool quiet = false;
+};
+
+/// Adds the options of VideoOptions to `command`: SCENE, -o/--output, --size (described by
+/// `size_help`), --fps, --frames, --time-scale and -q/--quiet.
+void add_video_options(CLI::App& command, VideoOptions& options, const std::string& size_help);
+
+/// What `tumble render` was asked to do. Options given here override the scene.
+struct RenderOptions : VideoOptions {
   std::optional<std::string> integrator;
   std::optional<double> dt;
   std::optional<int> antialiasing;  ///< samples per pixel
   bool no_overlay = false;
-  bool quiet = false;
 };
 
 /// Adds the `render` subcommand and its options to `cli`, filling `options` when parsed.
