@@ -19,6 +19,7 @@
 #include "render/image.hpp"
 #include "render/png_io.hpp"
 #include "support/command_test.hpp"
+#include "support/image_compare.hpp"
 #include "support/run_command.hpp"
 
 namespace tumble::app {
@@ -26,6 +27,7 @@ namespace {
 
 using nlohmann::json;
 using ::testing::HasSubstr;
+using tumble::testing::fraction_differing;
 using tumble::testing::fresh_directory;
 using tumble::testing::run_command;
 using tumble::testing::tumble_executable;
@@ -57,21 +59,6 @@ render::Image crop(const render::Image& image, int x, int y, int w, int h) {
   return out;
 }
 
-/// Fraction of the pixels whose RGB differ by more than `levels` in some channel.
-double fraction_differing(const render::Image& a, const render::Image& b, int levels) {
-  EXPECT_EQ(a.rgba.size(), b.rgba.size());
-  if (a.rgba.size() != b.rgba.size() || a.rgba.empty()) return 1.0;
-  std::size_t count = 0;
-  for (std::size_t i = 0; i < a.rgba.size(); i += 4) {
-    bool differs = false;
-    for (std::size_t c = 0; c < 3; ++c) {
-      differs = differs || std::abs(int{a.rgba[i + c]} - int{b.rgba[i + c]}) > levels;
-    }
-    count += differs ? 1 : 0;
-  }
-  return static_cast<double>(count) / static_cast<double>(a.rgba.size() / 4);
-}
-
 class CompareCommand : public testing::CommandTest {
  protected:
   static testing::CommandResult compare(const std::string& arguments) {
@@ -81,12 +68,8 @@ class CompareCommand : public testing::CommandTest {
 
   /// Names in the test folder other than the scene files.
   std::vector<std::string> outputs() const {
-    std::vector<std::string> names;
-    for (const auto& entry : std::filesystem::directory_iterator(dir_)) {
-      const std::string name = entry.path().filename().string();
-      if (entry.path().extension() != ".json") names.push_back(name);
-    }
-    std::sort(names.begin(), names.end());
+    std::vector<std::string> names = testing::directory_entries(dir_);
+    std::erase_if(names, [](const std::string& name) { return name.ends_with(".json"); });
     return names;
   }
 };

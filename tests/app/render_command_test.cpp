@@ -17,6 +17,7 @@
 #include "engine/simulation.hpp"
 #include "render/png_io.hpp"
 #include "support/command_test.hpp"
+#include "support/image_compare.hpp"
 #include "support/run_command.hpp"
 
 namespace tumble::app {
@@ -26,6 +27,8 @@ using nlohmann::json;
 using ::testing::HasSubstr;
 using ::testing::Not;
 using tumble::testing::fresh_directory;
+using tumble::testing::mean_difference;
+using tumble::testing::pixels_differing;
 using tumble::testing::read_text;
 using tumble::testing::run_command;
 using tumble::testing::tumble_executable;
@@ -44,32 +47,6 @@ json tumbling_scene(double duration = 0.5, double dt = 0.01) {
              {"angular_velocity_frame", "body"}}}}};
 }
 
-
-/// Mean absolute difference per RGB channel, in 8-bit levels.
-double mean_difference(const render::Image& a, const render::Image& b) {
-  EXPECT_EQ(a.width, b.width);
-  EXPECT_EQ(a.height, b.height);
-  if (a.rgba.size() != b.rgba.size()) return 255.0;
-  double sum = 0.0;
-  for (std::size_t i = 0; i < a.rgba.size(); ++i) {
-    if (i % 4 != 3) sum += std::abs(int{a.rgba[i]} - int{b.rgba[i]});
-  }
-  return sum / (0.75 * static_cast<double>(a.rgba.size()));
-}
-
-/// Pixels whose RGB differ by more than `levels` in some channel.
-std::size_t pixels_differing(const render::Image& a, const render::Image& b, int levels) {
-  if (a.rgba.size() != b.rgba.size()) return a.rgba.size() / 4;
-  std::size_t count = 0;
-  for (std::size_t i = 0; i < a.rgba.size(); i += 4) {
-    bool differs = false;
-    for (std::size_t c = 0; c < 3; ++c) {
-      differs = differs || std::abs(int{a.rgba[i + c]} - int{b.rgba[i + c]}) > levels;
-    }
-    count += differs ? 1 : 0;
-  }
-  return count;
-}
 
 std::string png_name(std::size_t index) {
   char name[32];

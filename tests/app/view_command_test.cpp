@@ -13,12 +13,15 @@
 
 #include "render/png_io.hpp"
 #include "support/command_test.hpp"
+#include "support/image_compare.hpp"
 #include "support/run_command.hpp"
 
 namespace tumble::app {
 namespace {
 
 using ::testing::HasSubstr;
+using tumble::testing::PixelRegion;
+using tumble::testing::pixels_differing;
 using tumble::testing::probe_video;
 using tumble::testing::run_command;
 using tumble::testing::tumble_executable;
@@ -30,31 +33,12 @@ constexpr int kSceneRight = 880;
 /// Above this y nothing but the view and the scene's overlay (notices appear below it).
 constexpr int kSceneBottom = 560;
 
-/// A pixel rectangle [x0, x1) x [y0, y1).
-struct Region {
-  int x0, y0, x1, y1;
-};
-constexpr Region kSceneRegion{0, 0, kSceneRight, kSceneBottom};
-constexpr Region kPanelRegion{kWidth - 360, 40, kWidth - 20, kHeight - 20};
-
-/// Pixels of `region` that differ between `a` and `b`.
-std::size_t changed_pixels(const render::Image& a, const render::Image& b, Region region) {
-  std::size_t changed = 0;
-  for (int y = region.y0; y < region.y1; ++y) {
-    for (int x = region.x0; x < region.x1; ++x) {
-      const std::size_t i = 4 * (static_cast<std::size_t>(y) * a.width + x);
-      if (a.rgba[i] != b.rgba[i] || a.rgba[i + 1] != b.rgba[i + 1] ||
-          a.rgba[i + 2] != b.rgba[i + 2]) {
-        ++changed;
-      }
-    }
-  }
-  return changed;
-}
+constexpr PixelRegion kSceneRegion{0, 0, kSceneRight, kSceneBottom};
+constexpr PixelRegion kPanelRegion{kWidth - 360, 40, kWidth - 20, kHeight - 20};
 
 /// Pixels of `region` matching `test(r, g, b)`.
 template <typename Test>
-std::size_t count_pixels(const render::Image& image, Region region, Test test) {
+std::size_t count_pixels(const render::Image& image, PixelRegion region, Test test) {
   std::size_t count = 0;
   for (int y = region.y0; y < region.y1; ++y) {
     for (int x = region.x0; x < region.x1; ++x) {
@@ -124,15 +108,15 @@ TEST_F(ViewCommand, DrawsTheBodyAndThePanelsAndSpacePauses) {
                                  static_cast<std::size_t>(kPanelRegion.y1 - kPanelRegion.y0);
   // Its grey background (between the blue headers and plot frames) covers a third of it.
   EXPECT_GT(count_pixels(playing1, kPanelRegion, dark), panel_area / 3);
-  EXPECT_EQ(count_pixels(playing1, Region{340, 240, kSceneRight, kSceneBottom}, dark), 0u)
+  EXPECT_EQ(count_pixels(playing1, PixelRegion{340, 240, kSceneRight, kSceneBottom}, dark), 0u)
       << "no panel over the middle of the view";
 
   // Playing: the body moves between screenshots; paused: the view is identical; Space again
   // resumes.
   const render::Image paused1 = shot("paused1.png");
-  EXPECT_GT(changed_pixels(playing1, shot("playing2.png"), kSceneRegion), 500u);
-  EXPECT_EQ(changed_pixels(paused1, shot("paused2.png"), kSceneRegion), 0u);
-  EXPECT_GT(changed_pixels(paused1, shot("resumed.png"), kSceneRegion), 500u);
+  EXPECT_GT(pixels_differing(playing1, shot("playing2.png"), 0, kSceneRegion), 500u);
+  EXPECT_EQ(pixels_differing(paused1, shot("paused2.png"), 0, kSceneRegion), 0u);
+  EXPECT_GT(pixels_differing(paused1, shot("resumed.png"), 0, kSceneRegion), 500u);
 }
 
 TEST_F(ViewCommand, RightStepsWhilePausedAndBackspaceResets) {
@@ -147,9 +131,9 @@ TEST_F(ViewCommand, RightStepsWhilePausedAndBackspaceResets) {
   ASSERT_EQ(result.status, 0) << result.err;
   const render::Image start = shot("start.png");
   // One 1 ms step turns the body a little (w ~ 10 rad/s: about half a degree).
-  EXPECT_GT(changed_pixels(start, shot("stepped.png"), kSceneRegion), 20u);
+  EXPECT_GT(pixels_differing(start, shot("stepped.png"), 0, kSceneRegion), 20u);
   // Reset returns to the first frame exactly.
-  EXPECT_EQ(changed_pixels(start, shot("reset.png"), kSceneRegion), 0u);
+  EXPECT_EQ(pixels_differing(start, shot("reset.png"), 0, kSceneRegion), 0u);
 }
 
 TEST_F(ViewCommand, DragOrbitsTheCameraButNotOverAPanel) {
@@ -168,9 +152,9 @@ TEST_F(ViewCommand, DragOrbitsTheCameraButNotOverAPanel) {
       "--paused '" + demo() + "'");
   ASSERT_EQ(result.status, 0) << result.err;
   const render::Image orbited = shot("orbited.png");
-  EXPECT_GT(changed_pixels(shot("before.png"), orbited, kSceneRegion), 2000u);
-  EXPECT_EQ(changed_pixels(orbited, shot("over_panel.png"), kSceneRegion), 0u);
-  EXPECT_EQ(changed_pixels(orbited, shot("wheel_over_panel.png"), kSceneRegion), 0u);
+  EXPECT_GT(pixels_differing(shot("before.png"), orbited, 0, kSceneRegion), 2000u);
+  EXPECT_EQ(pixels_differing(orbited, shot("over_panel.png"), 0, kSceneRegion), 0u);
+  EXPECT_EQ(pixels_differing(orbited, shot("wheel_over_panel.png"), 0, kSceneRegion), 0u);
   // Zooming in (three notches: 1.15^3 = 1.52 times closer) makes the body bigger.
   EXPECT_GT(count_pixels(shot("zoomed.png"), kSceneRegion, orange),
             count_pixels(orbited, kSceneRegion, orange) * 3 / 2);
@@ -212,7 +196,7 @@ TEST_F(ViewCommand, ABadDroppedFileShowsAnErrorAndTheViewerKeepsRunning) {
   EXPECT_THAT(result.err, HasSubstr("broken.obj"));
   // Still drawing the T-handle after the bad drops, then the racket.
   EXPECT_GT(count_pixels(shot("after.png"), kSceneRegion, orange), 3000u);
-  EXPECT_GT(changed_pixels(shot("after.png"), shot("racket.png"), kSceneRegion), 5000u);
+  EXPECT_GT(pixels_differing(shot("after.png"), shot("racket.png"), 0, kSceneRegion), 5000u);
 }
 
 TEST_F(ViewCommand, PanelButtonsPlayPauseAndReset) {
@@ -231,10 +215,10 @@ TEST_F(ViewCommand, PanelButtonsPlayPauseAndReset) {
       "--paused '" + demo() + "'");
   ASSERT_EQ(result.status, 0) << result.err;
   const render::Image start = shot("start.png");
-  EXPECT_GT(changed_pixels(shot("playing1.png"), shot("playing2.png"), kSceneRegion), 500u);
-  EXPECT_EQ(changed_pixels(shot("paused1.png"), shot("paused2.png"), kSceneRegion), 0u);
-  EXPECT_GT(changed_pixels(start, shot("paused1.png"), kSceneRegion), 500u);
-  EXPECT_EQ(changed_pixels(start, shot("reset.png"), kSceneRegion), 0u);
+  EXPECT_GT(pixels_differing(shot("playing1.png"), shot("playing2.png"), 0, kSceneRegion), 500u);
+  EXPECT_EQ(pixels_differing(shot("paused1.png"), shot("paused2.png"), 0, kSceneRegion), 0u);
+  EXPECT_GT(pixels_differing(start, shot("paused1.png"), 0, kSceneRegion), 500u);
+  EXPECT_EQ(pixels_differing(start, shot("reset.png"), 0, kSceneRegion), 0u);
 }
 
 TEST_F(ViewCommand, IntegratorPanelAddsARunBeside) {
@@ -276,8 +260,8 @@ TEST_F(ViewCommand, RealKeyPressesFromXdotoolReachTheViewer) {
                   "' --script script.txt --output-dir . </dev/null & " + keys + "; wait\"");
   ASSERT_EQ(result.status, 0) << result.err;
   const render::Image paused1 = shot("paused1.png");
-  EXPECT_EQ(changed_pixels(paused1, shot("paused2.png"), kSceneRegion), 0u);
-  EXPECT_GT(changed_pixels(shot("playing.png"), paused1, kSceneRegion), 500u);
+  EXPECT_EQ(pixels_differing(paused1, shot("paused2.png"), 0, kSceneRegion), 0u);
+  EXPECT_GT(pixels_differing(shot("playing.png"), paused1, 0, kSceneRegion), 500u);
   // Ctrl+P, with the modifier from the keyboard state.
   EXPECT_TRUE(std::filesystem::exists(dir_ / "t_handle_flip-1.png"));
 }

@@ -16,8 +16,11 @@
 #include "render/draw_list.hpp"
 #include "render/image.hpp"
 #include "render/png_io.hpp"
+#include "support/image_compare.hpp"
 
 namespace tumble::render::testing {
+
+using tumble::testing::mean_difference;
 
 /// Box with the given half extents, 8 vertices, 12 outward triangles (flat shaded).
 inline MeshData box_mesh(const Eigen::Vector3f& half) {
@@ -94,17 +97,6 @@ inline int pixel_difference(const Image& a, const Image& b, int x, int y) {
   for (int c = 0; c < 3; ++c)
     worst = std::max(worst, std::abs(a.pixel(x, y)[c] - b.pixel(x, y)[c]));
   return worst;
-}
-
-/// Mean absolute difference over all RGB channels.
-inline double mean_difference(const Image& a, const Image& b) {
-  double sum = 0;
-  for (int y = 0; y < a.height; ++y) {
-    for (int x = 0; x < a.width; ++x) {
-      for (int c = 0; c < 3; ++c) sum += std::abs(a.pixel(x, y)[c] - b.pixel(x, y)[c]);
-    }
-  }
-  return sum / (3.0 * a.width * a.height);
 }
 
 /// Compares with tests/render/golden/<name>.png: at most 1 % of pixels may differ by more than
