@@ -125,10 +125,7 @@ struct FrameBuilder::Impl {
   std::vector<BodyLook> looks;
   detail::CameraRig rig;
   double ground_height = 0.0;
-  double initial_energy = 0.0;
-  double energy_scale = 1.0;
-  double initial_momentum = 0.0;
-  double momentum_scale = 1.0;
+  InvariantDrift drift;
   bool conservative = true;  ///< every body: energy is an invariant
   bool torque_free = true;   ///< every body: |L| is an invariant
 
@@ -152,6 +149,28 @@ struct FrameBuilder::Impl {
   void add_overlay(const engine::Simulation& simulation, std::size_t end, const ShowSettings& show,
                    render::DrawList& list) const;
 };
+
+InvariantDrift::InvariantDrift(const std::vector<engine::BodyModel>& bodies,
+                               const std::vector<engine::BodyState>& initial) {
+  const Values start = (*this)(bodies, initial);  // the sums, over the unit scales
+  initial_energy_ = start.energy;
+  initial_momentum_ = start.momentum;
+  if (std::abs(initial_energy_) > 0.0) energy_scale_ = std::abs(initial_energy_);
+  if (initial_momentum_ > 0.0) momentum_scale_ = initial_momentum_;
+}
+
+InvariantDrift::Values InvariantDrift::operator()(
+    const std::vector<engine::BodyModel>& bodies,
+    const std::vector<engine::BodyState>& states) const {
+  double energy = 0.0;
+  double momentum = 0.0;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    energy += engine::energy(bodies[i], states[i]);
+    momentum += states[i].angular_momentum.norm();
+  }
+  return {(energy - initial_energy_) / energy_scale_,
+          (momentum - initial_momentum_) / momentum_scale_};
+}
 
 FrameBuilder::FrameBuilder(const SceneDescription& description, const CompiledScene& scene,
                            const RenderSettings& settings, render::Renderer& renderer)
@@ -205,14 +224,11 @@ FrameBuilder::FrameBuilder(const SceneDescription& description, const CompiledSc
   impl.trails.resize(settings.show.trails.size());
 
   // Invariants at the start, for the drift plots.
-  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    impl.initial_energy += engine::energy(scene.bodies[i], scene.initial[i]);
-    impl.initial_momentum += scene.initial[i].angular_momentum.norm();
-    impl.conservative = impl.conservative && scene.bodies[i].conservative();
-    impl.torque_free = impl.torque_free && scene.bodies[i].torque_free();
+  impl.drift = InvariantDrift(scene.bodies, scene.initial);
+  for (const engine::BodyModel& body : scene.bodies) {
+    impl.conservative = impl.conservative && body.conservative();
+    impl.torque_free = impl.torque_free && body.torque_free();
   }
-  if (std::abs(impl.initial_energy) > 0.0) impl.energy_scale = std::abs(impl.initial_energy);
-  if (impl.initial_momentum > 0.0) impl.momentum_scale = impl.initial_momentum;
 
   impl.frame_the_run(scene);
 }
@@ -275,16 +291,9 @@ void FrameBuilder::observe(const engine::Simulation& simulation) {
   impl.times.push_back(time);
 
   // Drift of the invariants, relative to their start values.
-  double energy = 0.0;
-  double momentum = 0.0;
-  for (std::size_t i = 0; i < simulation.bodies().size(); ++i) {
-    energy += engine::energy(simulation.bodies()[i], simulation.states()[i]);
-    momentum += simulation.states()[i].angular_momentum.norm();
-  }
-  impl.energy_drift.push_back(
-      static_cast<float>((energy - impl.initial_energy) / impl.energy_scale));
-  impl.momentum_drift.push_back(
-      static_cast<float>((momentum - impl.initial_momentum) / impl.momentum_scale));
+  const InvariantDrift::Values drift = impl.drift(simulation.bodies(), simulation.states());
+  impl.energy_drift.push_back(static_cast<float>(drift.energy));
+  impl.momentum_drift.push_back(static_cast<float>(drift.momentum));
 
   // The tip of the scaled w: in the world from the centre (herpolhode), in the body (polhode).
   for (std::size_t i = 0; i < simulation.bodies().size(); ++i) {

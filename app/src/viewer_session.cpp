@@ -218,14 +218,7 @@ void Session::rebuild(const std::vector<RunSpec>& specs) {
   rate_wall_ = 0.0;
   rate_start_ = 0.0;
   history_ = History{};
-  initial_energy_ = 0.0;
-  initial_momentum_ = 0.0;
-  for (std::size_t i = 0; i < compiled_.bodies.size(); ++i) {
-    initial_energy_ += engine::energy(compiled_.bodies[i], compiled_.initial[i]);
-    initial_momentum_ += compiled_.initial[i].angular_momentum.norm();
-  }
-  energy_scale_ = std::abs(initial_energy_) > 0.0 ? std::abs(initial_energy_) : 1.0;
-  momentum_scale_ = initial_momentum_ > 0.0 ? initial_momentum_ : 1.0;
+  drift_ = InvariantDrift(compiled_.bodies, compiled_.initial);
   record_history();
 }
 
@@ -423,16 +416,10 @@ void Session::set_plotted_body(std::size_t body) {
 void Session::record_history() {
   if (runs_.empty()) return;
   const engine::Simulation& simulation = *runs_.front().simulation;
-  double energy = 0.0;
-  double momentum = 0.0;
-  for (std::size_t i = 0; i < simulation.bodies().size(); ++i) {
-    energy += engine::energy(simulation.bodies()[i], simulation.states()[i]);
-    momentum += simulation.states()[i].angular_momentum.norm();
-  }
+  const InvariantDrift::Values drift = drift_(simulation.bodies(), simulation.states());
   history_.time.push_back(static_cast<float>(simulation.time()));
-  history_.energy_drift.push_back(static_cast<float>((energy - initial_energy_) / energy_scale_));
-  history_.momentum_drift.push_back(
-      static_cast<float>((momentum - initial_momentum_) / momentum_scale_));
+  history_.energy_drift.push_back(static_cast<float>(drift.energy));
+  history_.momentum_drift.push_back(static_cast<float>(drift.momentum));
   const std::size_t body = std::min(plotted_body_, simulation.bodies().size() - 1);
   const Eigen::Vector3d omega =
       initial_omega(simulation.bodies()[body], simulation.states()[body], VectorFrame::kBody);

@@ -44,6 +44,28 @@ class FrameBuilder {
   std::shared_ptr<Impl> impl_;
 };
 
+/// Relative drift of a run's invariants: the total energy and the sum of the bodies' |L|, each
+/// as (now - start) / |start| (over 1 when the start value is zero). The overlay's plots and the
+/// viewer's live plots both show it.
+class InvariantDrift {
+ public:
+  InvariantDrift() = default;
+  InvariantDrift(const std::vector<engine::BodyModel>& bodies,
+                 const std::vector<engine::BodyState>& initial);
+  struct Values {
+    double energy = 0.0;
+    double momentum = 0.0;
+  };
+  Values operator()(const std::vector<engine::BodyModel>& bodies,
+                    const std::vector<engine::BodyState>& states) const;
+
+ private:
+  double initial_energy_ = 0.0;
+  double energy_scale_ = 1.0;
+  double initial_momentum_ = 0.0;
+  double momentum_scale_ = 1.0;
+};
+
 /// Edge lengths (m) of the uniform box of `mass` whose principal moments about its centre are
 /// `moments` (kg m^2): from I1 = m (b^2 + c^2) / 12 etc., a^2 = 6 (I2 + I3 - I1) / m. A side
 /// that the moments make zero (a flat body, I1 + I2 = I3) is kept at a thousandth of the

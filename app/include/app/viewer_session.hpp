@@ -191,10 +191,7 @@ class Session {
   std::size_t generation_ = 0;
   std::size_t plotted_body_ = 0;
   History history_;
-  double initial_energy_ = 0.0;
-  double energy_scale_ = 1.0;
-  double initial_momentum_ = 0.0;
-  double momentum_scale_ = 1.0;
+  InvariantDrift drift_;
 };
 
 }  // namespace tumble::app::viewer
