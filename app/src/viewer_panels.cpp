@@ -389,7 +389,12 @@ void Panels::inspector_section(Viewer& viewer) {
   for (const std::string& warning : session.inspector_warnings(body)) {
     ImGui::TextColored(kErrorColour, "warning: %s", warning.c_str());
   }
-  const std::string report = session.inspector_text(body);
+  if (report_generation_ != session.generation() || report_body_ != body) {
+    report_ = session.inspector_text(body);
+    report_generation_ = session.generation();
+    report_body_ = body;
+  }
+  const std::string& report = report_;
   ImGui::BeginChild("report", ImVec2(0, 220), true, ImGuiWindowFlags_HorizontalScrollbar);
   ImGui::TextUnformatted(report.c_str());
   ImGui::EndChild();

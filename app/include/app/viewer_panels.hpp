@@ -57,6 +57,10 @@ class Panels {
   double preset_rate_ = 6.0;
   std::string open_path_;
   std::string record_path_;
+  // The inspector's report, formatted once per scene and body rather than every frame.
+  std::size_t report_generation_ = static_cast<std::size_t>(-1);
+  std::size_t report_body_ = static_cast<std::size_t>(-1);
+  std::string report_;
 };
 
 }  // namespace tumble::app::viewer
