@@ -14,6 +14,7 @@ namespace {
 
 using engine::BodyModel;
 using engine::BodyState;
+using engine::spinning_state;
 
 const Eigen::Quaterniond kTilted(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()));
 
@@ -26,14 +27,6 @@ BodyModel free_body(const std::string& name, const Eigen::Vector3d& moments) {
 }
 
 /// A state turning at `omega_body` (principal axes) in orientation `q`.
-BodyState spinning(const BodyModel& body, const Eigen::Quaterniond& q,
-                   const Eigen::Vector3d& omega_body) {
-  BodyState state;
-  state.orientation = q.normalized();
-  state.angular_momentum = state.orientation * body.moments.cwiseProduct(omega_body);
-  return state;
-}
-
 /// The dt values for the dimensionless steps `rate_dts` at `rate` (1/s).
 std::vector<double> steps_for(double rate, const std::vector<double>& rate_dts) {
   std::vector<double> dts;
@@ -50,7 +43,7 @@ StabilityCase spin_case(std::string name, std::string description, const Eigen::
   c.description = std::move(description);
   const BodyModel body = free_body(c.name, moments);
   c.bodies = {body};
-  c.initial = {spinning(body, kTilted, omega_body)};
+  c.initial = {spinning_state(body, kTilted, omega_body)};
   c.duration = duration;
   c.rate_label = "|w| dt";
   c.rate = omega_body.norm();
@@ -93,7 +86,7 @@ StabilityCase heavy_top(double duration, const std::vector<double>& rate_dts) {
       "fast heavy symmetric top: I = (1, 1, 0.5) about the centre of mass 0.5 m above a pivot, "
       "spin 50 rad/s, tilted 0.3 rad, gravity";
   c.bodies = {top};
-  c.initial = {spinning(top, Eigen::Quaterniond(Eigen::AngleAxisd(tilt, Eigen::Vector3d::UnitX())),
+  c.initial = {spinning_state(top, Eigen::Quaterniond(Eigen::AngleAxisd(tilt, Eigen::Vector3d::UnitX())),
                         Eigen::Vector3d(0.0, 0.0, spin))};
   c.duration = duration;
   c.rate_label = "w3 dt";

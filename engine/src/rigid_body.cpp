@@ -44,6 +44,14 @@ Eigen::Vector3d angular_velocity(const BodyModel& body, const BodyState& state) 
   return state.orientation * local.cwiseQuotient(body.moments);
 }
 
+BodyState spinning_state(const BodyModel& body, const Eigen::Quaterniond& orientation,
+                         const Eigen::Vector3d& omega_principal) {
+  BodyState state;
+  state.orientation = orientation.normalized();
+  state.angular_momentum = state.orientation * body.moments.cwiseProduct(omega_principal);
+  return state;
+}
+
 Wrench wrench(const BodyModel& body, const BodyState& state, const Eigen::Vector3d& omega) {
   Wrench out;
   for (const ForceTerm& term : body.forces) {

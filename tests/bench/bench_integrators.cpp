@@ -43,11 +43,11 @@ BodyModel t_handle(bool forced) {
 }
 
 BodyState t_handle_state(const BodyModel& body) {
-  BodyState s;
+  // Near the intermediate axis, ~3 rev/s.
+  BodyState s = spinning_state(
+      body, Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 1, 0).normalized())),
+      Eigen::Vector3d(0.2, 20.0, 0.2));
   s.position = Eigen::Vector3d(0.0, 0.0, 0.9);
-  s.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 1, 0).normalized()));
-  const Eigen::Vector3d omega_body(0.2, 20.0, 0.2);  // near the intermediate axis, ~3 rev/s
-  s.angular_momentum = s.orientation * body.moments.cwiseProduct(omega_body);
   return s;
 }
 

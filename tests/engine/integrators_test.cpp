@@ -40,14 +40,6 @@ BodyModel free_body(const Eigen::Vector3d& moments) {
 }
 
 /// A state turning at `omega_body` (principal frame) with orientation `q`.
-BodyState spinning(const BodyModel& body, const Eigen::Quaterniond& q,
-                   const Eigen::Vector3d& omega_body) {
-  BodyState s;
-  s.orientation = q.normalized();
-  s.angular_momentum = s.orientation * body.moments.cwiseProduct(omega_body);
-  return s;
-}
-
 Eigen::Vector3d body_omega(const BodyModel& body, const BodyState& s) {
   return (s.orientation.conjugate() * s.angular_momentum).cwiseQuotient(body.moments);
 }
@@ -106,7 +98,7 @@ TEST_P(ConvergenceOrder, MatchesExpectedOrderFromDtSweep) {
   const OrderCase c = GetParam();
   const BodyModel body = free_body(kMoments);
   const Eigen::Vector3d omega0(0.4, 0.8, 0.6);
-  const BodyState start = spinning(body, kOrientation, omega0);
+  const BodyState start = spinning_state(body, kOrientation, omega0);
   const TorqueFreeMotion exact(kMoments, kOrientation, omega0);
   const double horizon = 4.0;
 
@@ -161,7 +153,7 @@ TEST(SeedSemiImplicit, ErrorDoesNotShrinkWithDt) {
   const BodyModel body = free_body(kMoments);
   const Eigen::Vector3d omega0(0.4, 0.8, 0.6);
   const TorqueFreeMotion exact(kMoments, kOrientation, omega0);
-  const BodyState start = spinning(body, kOrientation, omega0);
+  const BodyState start = spinning_state(body, kOrientation, omega0);
   const double horizon = 4.0;
   const double coarse = error_against(exact, horizon, body,
                                       run(K::kSeedSemiImplicit, body, start, horizon / 500, 500));
@@ -178,7 +170,7 @@ TEST(SeedSemiImplicit, ErrorDoesNotShrinkWithDt) {
 TEST(SeedSemiImplicit, WorldOmegaFrozenNoFlipAndWorldMomentumSweeps) {
   const BodyModel body = free_body(kMoments);
   const Eigen::Vector3d omega0(0.4, 0.8, 0.6);  // circles the I3 axis: omega_2 flips sign
-  const BodyState start = spinning(body, kOrientation, omega0);
+  const BodyState start = spinning_state(body, kOrientation, omega0);
   const Eigen::Vector3d world_omega0 = angular_velocity(body, start);
   const TorqueFreeMotion exact(kMoments, kOrientation, omega0);
   ASSERT_LT(exact.flip_interval(), 20.0);
@@ -210,7 +202,7 @@ TEST(SeedSemiImplicit, WorldOmegaFrozenNoFlipAndWorldMomentumSweeps) {
 TEST(FreeRotor, MatchesExactToRoundingOverManySteps) {
   const BodyModel body = free_body(kMoments);
   const Eigen::Vector3d omega0(0.4, 0.8, 0.6);
-  const BodyState start = spinning(body, kOrientation, omega0);
+  const BodyState start = spinning_state(body, kOrientation, omega0);
   const TorqueFreeMotion exact(kMoments, kOrientation, omega0);
   const auto stepper = make_stepper(K::kFreeRotor, body, start, {});
   BodyState s = start;
@@ -229,7 +221,7 @@ TEST(FreeRotor, MatchesExactToRoundingOverManySteps) {
 // The splittings never touch world L without torques; semi-implicit Euler neither.
 TEST(Splitting, WorldAngularMomentumExactOverTenThousandSteps) {
   const BodyModel body = free_body(Eigen::Vector3d(1.0, 3.0, 3.5));
-  const BodyState start = spinning(body, kOrientation, Eigen::Vector3d(0.3, 2.0, 0.4));
+  const BodyState start = spinning_state(body, kOrientation, Eigen::Vector3d(0.3, 2.0, 0.4));
   for (const K kind : {K::kSplitting, K::kSplitting4, K::kSemiImplicitEuler}) {
     SCOPED_TRACE(integrator_info(kind).name);
     const BodyState end = run(kind, body, start, 0.01, 10000);
@@ -243,7 +235,7 @@ TEST(Splitting, WorldAngularMomentumExactOverTenThousandSteps) {
 // Implicit midpoint keeps the quadratic invariants 2T = L_b . J^-1 L_b and |L_b|^2 exactly.
 TEST(Midpoint, KeepsEnergyAndMomentumMagnitudeToRounding) {
   const BodyModel body = free_body(Eigen::Vector3d(1.0, 3.0, 3.5));
-  const BodyState start = spinning(body, kOrientation, Eigen::Vector3d(0.3, 2.0, 0.4));
+  const BodyState start = spinning_state(body, kOrientation, Eigen::Vector3d(0.3, 2.0, 0.4));
   const double energy0 = rotational_energy(body, start);
   const double momentum0 = start.angular_momentum.norm();
   const auto stepper = make_stepper(K::kMidpoint, body, start, {});
@@ -270,7 +262,7 @@ TEST(Midpoint, KeepsEnergyAndMomentumMagnitudeToRounding) {
 // the energy grow every step, by an amount that halves with dt (first order).
 TEST(ExplicitEuler, EnergyGrowsEveryStep) {
   const BodyModel body = free_body(kMoments);
-  const BodyState start = spinning(body, kOrientation, Eigen::Vector3d(0.4, 0.8, 0.6));
+  const BodyState start = spinning_state(body, kOrientation, Eigen::Vector3d(0.4, 0.8, 0.6));
   const double energy0 = rotational_energy(body, start);
   std::array<double, 2> growth{};
   for (int refine = 0; refine < 2; ++refine) {
@@ -298,7 +290,7 @@ TEST(ExplicitEuler, EnergyGrowsEveryStep) {
 // Backward Euler on the gyroscopic term damps: energy falls every step (the documented trade).
 TEST(ImplicitEuler, EnergyFallsEveryStep) {
   const BodyModel body = free_body(kMoments);
-  const BodyState start = spinning(body, kOrientation, Eigen::Vector3d(0.4, 0.8, 0.6));
+  const BodyState start = spinning_state(body, kOrientation, Eigen::Vector3d(0.4, 0.8, 0.6));
   const auto stepper = make_stepper(K::kImplicitEuler, body, start, {});
   BodyState s = start;
   double previous = rotational_energy(body, s);
@@ -321,7 +313,7 @@ TEST(ImplicitEuler, EnergyFallsEveryStep) {
 TEST(IntermediateAxis, FlipIntervalMatchesEllipticFormula) {
   const BodyModel body = free_body(kMoments);
   const Eigen::Vector3d omega0(0.05, 1.0, 0.05);
-  const BodyState start = spinning(body, kOrientation, omega0);
+  const BodyState start = spinning_state(body, kOrientation, omega0);
 
   // Closed form.
   const double i1 = kMoments.x(), i2 = kMoments.y(), i3 = kMoments.z();
@@ -380,7 +372,7 @@ TEST(SymmetricBody, PrecessionRatesMatchClosedForms) {
   const Eigen::Vector3d moments(1.0, 1.0, 2.0);
   const BodyModel body = free_body(moments);
   const Eigen::Vector3d omega0(0.3, 0.0, 2.0);
-  const BodyState start = spinning(body, kOrientation, omega0);
+  const BodyState start = spinning_state(body, kOrientation, omega0);
   const Eigen::Vector3d momentum = start.angular_momentum;
   const Eigen::Vector3d l_hat = momentum.normalized();
   // An orthonormal frame (e1, e2, l_hat) to measure angles about L.
@@ -431,7 +423,7 @@ TEST(HeavyTop, PrecessionAndNutationRatesMatchGyroscopicApproximation) {
   top.forces = {Gravity{Eigen::Vector3d(0.0, 0.0, -g)}};
   const double tilt = 0.3;
   const BodyState start =
-      spinning(top, Eigen::Quaterniond(Eigen::AngleAxisd(tilt, Eigen::Vector3d::UnitX())),
+      spinning_state(top, Eigen::Quaterniond(Eigen::AngleAxisd(tilt, Eigen::Vector3d::UnitX())),
                Eigen::Vector3d(0.0, 0.0, spin));
 
   const double precession_expected = mass * g * l / (i3 * spin);
@@ -489,7 +481,7 @@ TEST(HeavyTop, PrecessionAndNutationRatesMatchGyroscopicApproximation) {
 TEST(Dopri, ErrorFallsWithToleranceToAboutTheTolerance) {
   const BodyModel body = free_body(kMoments);
   const Eigen::Vector3d omega0(0.4, 0.8, 0.6);
-  const BodyState start = spinning(body, kOrientation, omega0);
+  const BodyState start = spinning_state(body, kOrientation, omega0);
   const TorqueFreeMotion exact(kMoments, kOrientation, omega0);
   const double h = 1.0;  // output steps long enough not to cap the controller's steps
   const int steps = 10;  // 10 s, several flips
@@ -549,7 +541,7 @@ TEST(ForceTerms, EmptyListBehavesAsZeroGravityForEveryIntegrator) {
   EXPECT_TRUE(bare.conservative());
   BodyModel zero_gravity = bare;
   zero_gravity.forces = {Gravity{Eigen::Vector3d::Zero()}};
-  BodyState start = spinning(bare, kOrientation, Eigen::Vector3d(0.4, 0.8, 0.6));
+  BodyState start = spinning_state(bare, kOrientation, Eigen::Vector3d(0.4, 0.8, 0.6));
   start.position = Eigen::Vector3d(1.0, 2.0, 3.0);
   start.velocity = Eigen::Vector3d(0.5, -0.25, 0.125);
   for (const IntegratorInfo& info : integrator_catalog()) {

@@ -35,14 +35,6 @@ BodyModel free_body(const std::string& name, const Eigen::Vector3d& moments) {
   return body;
 }
 
-BodyState spinning(const BodyModel& body, const Eigen::Quaterniond& q,
-                   const Eigen::Vector3d& omega_body) {
-  BodyState s;
-  s.orientation = q.normalized();
-  s.angular_momentum = s.orientation * body.moments.cwiseProduct(omega_body);
-  return s;
-}
-
 SimulationSettings settings_for(K kind, double dt, double duration) {
   SimulationSettings settings;
   settings.integrator = kind;
@@ -111,7 +103,7 @@ TEST(Simulation, ExactMatchesIndependentLongDoubleRk4OverManyFlips) {
   const Eigen::Vector3d moments(1.0, 2.0, 3.0);
   const Eigen::Vector3d omega0(0.4, 0.8, 0.6);
   const BodyModel body = free_body("tumbler", moments);
-  const BodyState start = spinning(body, kOrientation, omega0);
+  const BodyState start = spinning_state(body, kOrientation, omega0);
   const double dt = 0.05, duration = 40.0;
   Simulation sim({body}, {start}, settings_for(K::kExact, dt, duration));
   ASSERT_EQ(sim.total_steps(), 800u);
@@ -139,7 +131,7 @@ TEST(Simulation, ExactMatchesIndependentLongDoubleRk4OverManyFlips) {
 
 TEST(Simulation, TimesAreWholeStepsAndTheLastStepEndsAtTheDuration) {
   const BodyModel body = free_body("b", Eigen::Vector3d(1.0, 2.0, 3.0));
-  Simulation sim({body}, {spinning(body, kOrientation, Eigen::Vector3d(0.1, 0.2, 0.3))},
+  Simulation sim({body}, {spinning_state(body, kOrientation, Eigen::Vector3d(0.1, 0.2, 0.3))},
                  settings_for(K::kRk4, 0.3, 1.0));
   EXPECT_EQ(sim.total_steps(), 4u);
   std::vector<double> times;
@@ -313,7 +305,7 @@ struct NeedleCase {
 NeedleCase needle() {
   NeedleCase c;
   c.body = free_body("needle", Eigen::Vector3d(1.0, 1000.0, 1000.0));
-  c.start = spinning(c.body, kOrientation, Eigen::Vector3d(c.spin, c.wobble, 0.0));
+  c.start = spinning_state(c.body, kOrientation, Eigen::Vector3d(c.spin, c.wobble, 0.0));
   return c;
 }
 
@@ -368,7 +360,7 @@ TEST(Needle, SplittingStaysStableOnTheSameCase) {
 TEST(Simulation, BlowUpOfOneBodyLeavesEveryBodyAtTheLastGoodStep) {
   const NeedleCase c = needle();
   const BodyModel calm = free_body("calm", Eigen::Vector3d(1.0, 2.0, 3.0));
-  const BodyState calm_start = spinning(calm, kOrientation, Eigen::Vector3d(0.4, 0.8, 0.6));
+  const BodyState calm_start = spinning_state(calm, kOrientation, Eigen::Vector3d(0.4, 0.8, 0.6));
   Simulation sim({calm, c.body}, {calm_start, c.start},
                  settings_for(K::kExplicitEuler, c.dt, 10.0));
   std::vector<BodyState> last_good = sim.states();
@@ -401,10 +393,10 @@ TEST(Simulation, IdenticalRunsAreBitIdenticalForEveryIntegrator) {
   top.center_offset = Eigen::Vector3d(0.0, 0.0, 0.5);
   top.forces = {Gravity{Eigen::Vector3d(0.0, 0.0, -9.81)},
                 Spring{Eigen::Vector3d(0.3, 0.0, 1.0), Eigen::Vector3d(0.0, 0.1, 0.4), 5.0, 0.1}};
-  BodyState falling_start = spinning(falling, kOrientation, Eigen::Vector3d(0.4, 0.8, 0.6));
+  BodyState falling_start = spinning_state(falling, kOrientation, Eigen::Vector3d(0.4, 0.8, 0.6));
   falling_start.velocity = Eigen::Vector3d(1.0, 0.5, 3.0);
   const BodyState top_start =
-      spinning(top, Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX())),
+      spinning_state(top, Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX())),
                Eigen::Vector3d(0.0, 0.0, 50.0));
 
   for (const IntegratorInfo& info : integrator_catalog()) {

@@ -78,6 +78,11 @@ struct Wrench {
 /// World angular velocity w = R J^-1 R^T L.
 Eigen::Vector3d angular_velocity(const BodyModel& body, const BodyState& state);
 
+/// A state at the origin, at rest in translation, with principal frame `orientation` (to the
+/// world; normalised here) turning at `omega_principal` (rad/s, principal axes): L = R J w.
+BodyState spinning_state(const BodyModel& body, const Eigen::Quaterniond& orientation,
+                         const Eigen::Vector3d& omega_principal);
+
 /// The wrench of the body's force terms in `state` (zero, and nothing evaluated, when it has
 /// none). `omega` is the world angular velocity (for damping at a body point).
 Wrench wrench(const BodyModel& body, const BodyState& state, const Eigen::Vector3d& omega);
