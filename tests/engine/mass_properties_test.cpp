@@ -18,6 +18,7 @@
 #include "engine/mesh_analysis.hpp"
 #include "engine/primitive_meshes.hpp"
 #include "engine/rational_reference.hpp"
+#include "inertia_expectations.hpp"
 
 namespace tumble::engine {
 namespace {
@@ -25,29 +26,10 @@ namespace {
 using std::numbers::pi;
 using ::testing::HasSubstr;
 
-constexpr double kExact = 1e-12;  // relative to the largest principal moment
-
-double largest_moment(const Eigen::Matrix3d& inertia) {
-  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia, Eigen::EigenvaluesOnly)
-      .eigenvalues()
-      .cwiseAbs()
-      .maxCoeff();
-}
-
-/// Every entry of `actual` within `relative` times the largest principal moment of `expected`.
-void expect_inertia_near(const Eigen::Matrix3d& actual, const Eigen::Matrix3d& expected,
-                         double relative = kExact) {
-  const double tolerance = relative * largest_moment(expected);
-  EXPECT_LE((actual - expected).cwiseAbs().maxCoeff(), tolerance) << "actual\n"
-                                                                  << actual << "\nexpected\n"
-                                                                  << expected;
-}
-
-void expect_vector_near(const Eigen::Vector3d& actual, const Eigen::Vector3d& expected,
-                        double tolerance) {
-  EXPECT_LE((actual - expected).cwiseAbs().maxCoeff(), tolerance)
-      << "actual " << actual.transpose() << "\nexpected " << expected.transpose();
-}
+using testing::expect_inertia_near;
+using testing::expect_vector_near;
+using testing::kExact;
+using testing::largest_moment;
 
 /// The full pipeline at a given density (all checks on).
 MeshReport analyze(const TriangleMesh& mesh, double density = 1000.0) {

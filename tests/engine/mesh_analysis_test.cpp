@@ -15,6 +15,7 @@
 #include "engine/input_error.hpp"
 #include "engine/primitive_meshes.hpp"
 #include "engine/rational_reference.hpp"
+#include "inertia_expectations.hpp"
 
 namespace tumble::engine {
 namespace {
@@ -25,28 +26,10 @@ using ::testing::HasSubstr;
 using ::testing::IsEmpty;
 using ::testing::StartsWith;
 
-constexpr double kExact = 1e-12;
-
-double largest_moment(const Eigen::Matrix3d& inertia) {
-  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia, Eigen::EigenvaluesOnly)
-      .eigenvalues()
-      .cwiseAbs()
-      .maxCoeff();
-}
-
-void expect_inertia_near(const Eigen::Matrix3d& actual, const Eigen::Matrix3d& expected,
-                         double relative = kExact) {
-  EXPECT_LE((actual - expected).cwiseAbs().maxCoeff(), relative * largest_moment(expected))
-      << "actual\n"
-      << actual << "\nexpected\n"
-      << expected;
-}
-
-void expect_vector_near(const Eigen::Vector3d& actual, const Eigen::Vector3d& expected,
-                        double tolerance) {
-  EXPECT_LE((actual - expected).cwiseAbs().maxCoeff(), tolerance)
-      << "actual " << actual.transpose() << "\nexpected " << expected.transpose();
-}
+using testing::expect_inertia_near;
+using testing::expect_vector_near;
+using testing::kExact;
+using testing::largest_moment;
 
 MassOptions with_density(double density) {
   MassOptions options;
