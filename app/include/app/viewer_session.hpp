@@ -133,7 +133,9 @@ class Session {
   /// The camera a render of the scene starts with, and the radius of the motion around it.
   const render::Camera& scene_camera() const { return scene_camera_; }
   double reach() const;
-  /// The draw list of the current state seen by `camera`.
+  /// The draw list of the current state seen by `camera`. When show().inertia_ellipsoid has
+  /// changed, the frame builders are remade first (the ellipsoid's mesh and the arrows' scale
+  /// are fixed at construction), the runs stepped back to the same time, the plots kept.
   render::DrawList frame(const render::Camera& camera);
 
   /// Body whose w the live plots show.
