@@ -17,13 +17,16 @@
 #include <fstream>
 #include <span>
 #include <system_error>
-#include <thread>
 
 #include "engine/input_error.hpp"
 #include "engine/vertex_welding.hpp"
+#include "binary_stl.hpp"
+#include "split_in_two.hpp"
 
 namespace tumble::engine {
 namespace {
+
+using detail::split_in_two;
 
 [[noreturn]] void fail(const std::filesystem::path& file, const std::string& problem) {
   throw InputError(file.string() + ": " + problem);
@@ -41,15 +44,6 @@ Eigen::Matrix4d to_eigen(const aiMatrix4x4& m) {
   out << m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4, m.c1, m.c2, m.c3, m.c4, m.d1, m.d2, m.d3,
       m.d4;
   return out;
-}
-
-/// Runs work(begin, end) over [0, count), split between two threads when count is large.
-template <typename Work>
-void split_in_two(std::size_t count, const Work& work) {
-  if (count < (std::size_t{1} << 18)) return work(std::size_t{0}, count);
-  std::thread helper(work, count / 2, count);
-  work(std::size_t{0}, count / 2);
-  helper.join();
 }
 
 /// Appends the triangles of every mesh below `node`, transformed into the file's root frame.
@@ -133,17 +127,8 @@ void collect(const aiScene& scene, const aiNode& node, const Eigen::Matrix4d& pa
   }
 }
 
-}  // namespace
-
-TriangleMesh import_mesh(const std::filesystem::path& file, ImportStats* stats) {
-  // Say plainly what is wrong with the path before assimp does it vaguely.
-  std::error_code error;
-  const auto status = std::filesystem::status(file, error);
-  if (!std::filesystem::exists(status)) fail(file, "no such file");
-  if (std::filesystem::is_directory(status)) fail(file, "is a directory, not a mesh file");
-  if (!std::ifstream(file, std::ios::binary)) fail(file, "cannot be opened for reading");
-  if (std::filesystem::file_size(file, error) == 0 && !error) fail(file, "is empty");
-
+/// Reads the file with assimp (every format it knows) and collects its meshes.
+TriangleMesh import_with_assimp(const std::filesystem::path& file, ImportStats* stats) {
   Assimp::Importer importer;
   const aiScene* scene = importer.ReadFile(file.string(), 0);
   // Triangulate only when the file has polygons (STL never does).
@@ -173,6 +158,31 @@ TriangleMesh import_mesh(const std::filesystem::path& file, ImportStats* stats) 
   if (stats != nullptr) {
     stats->welded_vertices = welded;
     stats->distinct_positions = placed == 1 && !any_transform;
+  }
+  return mesh;
+}
+
+}  // namespace
+
+TriangleMesh import_mesh(const std::filesystem::path& file, ImportStats* stats,
+                         StlReader stl_reader) {
+  // Say plainly what is wrong with the path before assimp does it vaguely.
+  std::error_code error;
+  const auto status = std::filesystem::status(file, error);
+  if (!std::filesystem::exists(status)) fail(file, "no such file");
+  if (std::filesystem::is_directory(status)) fail(file, "is a directory, not a mesh file");
+  if (!std::ifstream(file, std::ios::binary)) fail(file, "cannot be opened for reading");
+  if (std::filesystem::file_size(file, error) == 0 && !error) fail(file, "is empty");
+
+  // Binary STL is read by tumble's own reader unless assimp is asked for.
+  TriangleMesh mesh;
+  std::optional<detail::BinaryStl> stl;
+  if (stl_reader == StlReader::tumble) stl = detail::read_binary_stl(file);
+  if (stl) {
+    mesh = std::move(stl->mesh);
+    if (stats != nullptr) *stats = {stl->welded_vertices, true, true};
+  } else {
+    mesh = import_with_assimp(file, stats);
   }
   if (mesh.triangles.empty()) fail(file, "contains no triangles");
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {

@@ -4,6 +4,8 @@
 //   BM_AssimpReadStl         assimp reading a 1M-triangle binary STL, no post-processing
 //   BM_InspectStl            `tumble inspect` end to end on that file: import, weld, checks,
 //                            integrals, principal axes (the budget: 2x assimp's read)
+//   BM_InspectStlThroughAssimp  the same with assimp reading the file (tumble's own binary
+//                            STL reader bypassed), for comparison
 //   BM_Weld, BM_Topology     the two linear-time passes, for the breakdown
 #include <benchmark/benchmark.h>
 
@@ -14,6 +16,8 @@
 
 #include "app/inspect_command.hpp"
 #include "engine/mass_properties.hpp"
+#include "engine/mesh_analysis.hpp"
+#include "engine/mesh_import.hpp"
 #include "engine/mesh_topology.hpp"
 #include "engine/primitive_meshes.hpp"
 #include "support/stl_writer.hpp"
@@ -88,6 +92,20 @@ void BM_InspectStl(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * 1'000'000);
 }
 BENCHMARK(BM_InspectStl)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/// The same inspection with assimp reading the file instead of tumble's binary STL reader: the
+/// pipeline as it was before that reader, for the record.
+void BM_InspectStlThroughAssimp(benchmark::State& state) {
+  const auto& file = million_triangle_stl();
+  for (auto _ : state) {
+    engine::ImportStats stats;
+    engine::TriangleMesh mesh = engine::import_mesh(file, &stats, engine::StlReader::assimp);
+    benchmark::DoNotOptimize(
+        engine::analyze_mesh(std::move(mesh), {}, file.string(), stats.distinct_positions));
+  }
+  state.SetItemsProcessed(state.iterations() * 1'000'000);
+}
+BENCHMARK(BM_InspectStlThroughAssimp)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 

@@ -207,10 +207,9 @@ void write_file(const std::filesystem::path& file, const std::string& bytes) {
   if (!out) throw std::runtime_error("cannot write " + file.string());
 }
 
-void write_stl_binary(const std::filesystem::path& file, const Polyhedron& mesh) {
+std::string binary_stl_bytes(const Polyhedron& mesh, const std::string& header) {
   require_triangles(mesh, "binary STL");
-  // The header must not start with "solid", or readers take the file for ASCII.
-  std::string bytes = "binary STL written by tumble's tests";
+  std::string bytes = header;
   bytes.resize(80, '\0');
   append_binary(bytes, static_cast<std::uint32_t>(mesh.faces.size()));
   for (const auto& face : mesh.faces) {
@@ -218,7 +217,11 @@ void write_stl_binary(const std::filesystem::path& file, const Polyhedron& mesh)
     for (const std::uint32_t v : face) append_vec3f(bytes, mesh.vertices[v]);
     append_binary(bytes, std::uint16_t{0});
   }
-  write_file(file, bytes);
+  return bytes;
+}
+
+void write_stl_binary(const std::filesystem::path& file, const Polyhedron& mesh) {
+  write_file(file, binary_stl_bytes(mesh));
 }
 
 void write_stl_ascii(const std::filesystem::path& file, const std::vector<Polyhedron>& solids) {

@@ -73,7 +73,11 @@ class TempDir {
 /// Writes `bytes` verbatim.
 void write_file(const std::filesystem::path& file, const std::string& bytes);
 
-/// Binary STL (80-byte header, little-endian float32); faces must be triangles.
+/// The bytes of a binary STL (80-byte header, little-endian float32); faces must be triangles.
+/// The default header does not start with "solid", which some readers take for ASCII.
+std::string binary_stl_bytes(const Polyhedron& mesh,
+                             const std::string& header = "binary STL written by tumble's tests");
+/// Binary STL with the default header.
 void write_stl_binary(const std::filesystem::path& file, const Polyhedron& mesh);
 /// ASCII STL with one `solid` block per element; faces must be triangles.
 void write_stl_ascii(const std::filesystem::path& file, const std::vector<Polyhedron>& solids);

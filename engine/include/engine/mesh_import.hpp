@@ -14,7 +14,15 @@ struct ImportStats {
   /// True when the whole file was one mesh placed once without a transform: its welded
   /// positions are then already distinct, and the analysis need not weld them again.
   bool distinct_positions = false;
+  /// True when tumble's own binary STL reader read the file rather than assimp.
+  bool own_stl_reader = false;
 };
+
+/// Who reads binary STL files. tumble's own reader (the default) welds the corners straight
+/// from the file's bytes and gives the same mesh as assimp in a fraction of the time; assimp
+/// is kept selectable to compare the two (tests, benchmarks). Other formats, ASCII STL
+/// included, are always assimp's.
+enum class StlReader { tumble, assimp };
 
 /// Reads every mesh of a file assimp understands (STL, OBJ, PLY, OFF, glTF 2.0, FBX, ...) into
 /// one triangle mesh, with each node's accumulated transform applied (a mirroring transform
@@ -23,6 +31,7 @@ struct ImportStats {
 /// weld_by_position. Polygons are triangulated; points and lines are ignored. Throws
 /// InputError naming the file when it cannot be read, has an unknown format, holds no
 /// triangles or has non-finite coordinates.
-TriangleMesh import_mesh(const std::filesystem::path& file, ImportStats* stats = nullptr);
+TriangleMesh import_mesh(const std::filesystem::path& file, ImportStats* stats = nullptr,
+                         StlReader stl_reader = StlReader::tumble);
 
 }  // namespace tumble::engine

@@ -1,0 +1,118 @@
+// Binary STL read straight into a welded mesh (see binary_stl.hpp for why and for the format).
+#include "binary_stl.hpp"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cctype>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <string>
+#include <system_error>
+
+#include "engine/input_error.hpp"
+#include "engine/vertex_welding.hpp"
+#include "split_in_two.hpp"
+
+namespace tumble::engine::detail {
+namespace {
+
+constexpr std::size_t kHeaderBytes = 84;    // 80 free bytes, then the triangle count
+constexpr std::size_t kRecordBytes = 50;    // normal, three corners, attribute word
+constexpr std::size_t kCornersOffset = 12;  // the corners follow the normal
+
+[[noreturn]] void fail(const std::filesystem::path& file, const std::string& problem) {
+  throw InputError(file.string() + ": " + problem);
+}
+
+/// The little-endian uint32 at `bytes` (a plain load on little-endian machines).
+std::uint32_t little_uint32(const unsigned char* bytes) {
+  return std::uint32_t{bytes[0]} | std::uint32_t{bytes[1]} << 8 | std::uint32_t{bytes[2]} << 16 |
+         std::uint32_t{bytes[3]} << 24;
+}
+
+bool has_stl_extension(const std::filesystem::path& file) {
+  std::string extension = file.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension == ".stl";
+}
+
+struct CloseFile {
+  void operator()(std::FILE* stream) const { std::fclose(stream); }
+};
+
+}  // namespace
+
+std::optional<BinaryStl> read_binary_stl(const std::filesystem::path& file) {
+  // Claim only files named *.stl whose size is that of a binary STL (assimp chooses its reader
+  // by the name first, so any other name is left to it).
+  if (!has_stl_extension(file)) return std::nullopt;
+  std::error_code error;
+  const std::uintmax_t size = std::filesystem::file_size(file, error);
+  if (error || size < kHeaderBytes) return std::nullopt;
+  const std::unique_ptr<std::FILE, CloseFile> stream(std::fopen(file.string().c_str(), "rb"));
+  if (!stream) fail(file, "cannot be opened for reading");
+  unsigned char header[kHeaderBytes];
+  if (std::fread(header, 1, kHeaderBytes, stream.get()) != kHeaderBytes) {
+    fail(file, "could not be read to the end");
+  }
+  const std::size_t triangles = little_uint32(header + 80);
+  if (size != kHeaderBytes + kRecordBytes * triangles) return std::nullopt;
+  // Every corner gets a 32-bit index before welding.
+  if (triangles > (std::numeric_limits<std::uint32_t>::max() - 1) / 3) {
+    fail(file, "has " + std::to_string(triangles) + " triangles, more than one body can hold (" +
+                   std::to_string((std::numeric_limits<std::uint32_t>::max() - 1) / 3) + ")");
+  }
+
+  // The records, read whole into memory that the welding reads in order (huge pages: see
+  // advise_huge_pages).
+  const std::size_t body_bytes = kRecordBytes * triangles;
+  const auto body =
+      std::make_unique_for_overwrite<unsigned char[]>(std::max<std::size_t>(body_bytes, 1));
+  advise_huge_pages(body.get(), body_bytes);
+  if (std::fread(body.get(), 1, body_bytes, stream.get()) != body_bytes) {
+    fail(file, "could not be read to the end");
+  }
+
+  // Weld the corners on the file's own float bits. Corner v is corner v % 3 of record v / 3.
+  const auto corner = [&body](std::size_t v) {
+    const unsigned char* const bytes =
+        body.get() + (v / 3) * kRecordBytes + kCornersOffset + (v % 3) * 12;
+    return std::array<float, 3>{std::bit_cast<float>(little_uint32(bytes)),
+                                std::bit_cast<float>(little_uint32(bytes + 4)),
+                                std::bit_cast<float>(little_uint32(bytes + 8))};
+  };
+  const std::size_t corners = 3 * triangles;
+  const WeldMap weld = weld_positions<float>(corners, corner);
+
+  // Widen the survivors to doubles and index the triangles, on two threads for large files;
+  // the output arrays are fresh memory, so they get huge pages too.
+  BinaryStl result;
+  result.welded_vertices = corners - weld.kept.size();
+  TriangleMesh& mesh = result.mesh;
+  mesh.positions.reserve(weld.kept.size());
+  advise_huge_pages(mesh.positions.data(), weld.kept.size() * sizeof(Eigen::Vector3d));
+  mesh.positions.resize(weld.kept.size());  // Eigen leaves the new vectors uninitialised
+  split_in_two(weld.kept.size(), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::array<float, 3> p = corner(weld.kept[i]);
+      mesh.positions[i] = Eigen::Vector3d(p[0], p[1], p[2]);
+    }
+  });
+  mesh.triangles.reserve(triangles);
+  advise_huge_pages(mesh.triangles.data(), triangles * sizeof(mesh.triangles[0]));
+  mesh.triangles.resize(triangles);
+  split_in_two(triangles, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t t = begin; t < end; ++t) {
+      mesh.triangles[t] = {weld.new_index[3 * t], weld.new_index[3 * t + 1],
+                           weld.new_index[3 * t + 2]};
+    }
+  });
+  return result;
+}
+
+}  // namespace tumble::engine::detail

@@ -1,0 +1,38 @@
+#pragma once
+// tumble's own reader for binary STL, the format of large scanned and printed meshes.
+//
+// assimp reads binary STL as well, but builds what inspection never uses: a normal for each
+// face corner (36 bytes a triangle) and a heap-allocated index array for each face, before the
+// engine welds the soup. On a million-triangle file that costs more than the welding and every
+// check together. This reader keeps the file's bytes, welds the corner positions straight from
+// them, and builds the indexed mesh in one step. Its result is the one import_mesh makes
+// through assimp (the tests compare the two on every STL fixture).
+//
+// The format (3D Systems, "StereoLithography Interface Specification", 1988; little-endian): an
+// 80-byte header, the triangle count n as uint32, then n records of 50 bytes: a normal and
+// three corners as float32 triples, and a 16-bit attribute word. A file is taken as binary when
+// its size is exactly 84 + 50 n, whatever its header says: assimp 5.2 decides the same way,
+// also for headers that begin with "solid" like an ASCII file (the tests check both).
+
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+
+#include "engine/triangle_mesh.hpp"
+
+namespace tumble::engine::detail {
+
+/// What read_binary_stl made: the welded mesh and how many corners were merged away.
+struct BinaryStl {
+  TriangleMesh mesh;
+  std::size_t welded_vertices = 0;
+};
+
+/// Reads `file` when it is a binary STL (named *.stl, case-insensitive, of size 84 + 50 n);
+/// returns nothing for any other file, which is assimp's to read. Corners at bit-identical
+/// positions are welded (engine/vertex_welding.hpp), in order of first appearance. Coordinates
+/// are not checked here: non-finite ones are import_mesh's to reject. Throws InputError naming
+/// the file when it cannot be read or holds more triangles than 32-bit indices can weld.
+std::optional<BinaryStl> read_binary_stl(const std::filesystem::path& file);
+
+}  // namespace tumble::engine::detail
