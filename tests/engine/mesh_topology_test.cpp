@@ -1,6 +1,8 @@
 // Welding and edge topology on hand-made meshes whose counts are known by inspection.
 #include "engine/mesh_topology.hpp"
 
+#include "engine/primitive_meshes.hpp"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -112,6 +114,37 @@ TEST(RemoveDegenerateTriangles, RemovesOnlyRepeatedVertexTriangles) {
   EXPECT_EQ(remove_degenerate_triangles(mesh), 4u);
   // The collinear (zero-area) triangle 0-1-2 has three distinct vertices: it stays.
   EXPECT_THAT(mesh.triangles, ::testing::ElementsAre(Triangle{0, 1, 3}, Triangle{0, 1, 2}));
+}
+
+TEST(RemoveUnreferencedVertices, KeepsUsedVerticesInOrderAndRenumbers) {
+  // The tetrahedron's four vertices spread among unused ones: first, middle and last, or
+  // only after some used ones.
+  const TriangleMesh expected = tetrahedron();
+  for (const std::vector<bool>& used : {std::vector<bool>{0, 1, 1, 0, 1, 1, 0},
+                                        std::vector<bool>{1, 1, 0, 1, 0, 0, 1}}) {
+    TriangleMesh mesh;
+    std::vector<std::uint32_t> moved;
+    for (std::size_t i = 0; i < used.size(); ++i) {
+      if (used[i]) {
+        moved.push_back(static_cast<std::uint32_t>(i));
+        mesh.positions.push_back(expected.positions[moved.size() - 1]);
+      } else {
+        mesh.positions.push_back(Eigen::Vector3d(9.0, 9.0, 9.0 + static_cast<double>(i)));
+      }
+    }
+    mesh.triangles = expected.triangles;
+    for (Triangle& t : mesh.triangles) {
+      for (std::uint32_t& v : t) v = moved[v];
+    }
+    EXPECT_EQ(remove_unreferenced_vertices(mesh), 3u);
+    EXPECT_EQ(mesh.positions, expected.positions);
+    EXPECT_EQ(mesh.triangles, expected.triangles);
+  }
+  // A mesh that uses every vertex is left as it is.
+  TriangleMesh mesh = tetrahedron();
+  EXPECT_EQ(remove_unreferenced_vertices(mesh), 0u);
+  EXPECT_EQ(mesh.positions, expected.positions);
+  EXPECT_EQ(mesh.triangles, expected.triangles);
 }
 
 TEST(AnalyzeTopology, ClosedTetrahedron) {
@@ -243,6 +276,75 @@ TEST(AnalyzeTopology, UnweldedSoupIsAllBoundary) {
   const Topology after = analyze_topology(soup);
   EXPECT_TRUE(after.closed());
   EXPECT_EQ(after.parts, 1u);
+}
+
+/// Edge counts by the definition, with an ordered map from each undirected edge to its uses in
+/// each direction: the oracle for count_edge_uses' bucketed counting.
+Topology edge_counts_by_map(const TriangleMesh& mesh) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::pair<int, int>> uses;
+  for (const Triangle& t : mesh.triangles) {
+    for (int corner = 0; corner < 3; ++corner) {
+      const std::uint32_t from = t[corner], to = t[(corner + 1) % 3];
+      auto& [forward, backward] = uses[{std::min(from, to), std::max(from, to)}];
+      (from < to ? forward : backward)++;
+    }
+  }
+  Topology counts;
+  for (const auto& [edge, use] : uses) {
+    const auto [forward, backward] = use;
+    if (forward + backward == 1) {
+      ++counts.boundary_edges;
+    } else if (forward != backward) {
+      ++counts.inconsistent_edges;
+    } else if (forward + backward > 2) {
+      ++counts.non_manifold_edges;
+    }
+  }
+  return counts;
+}
+
+TEST(AnalyzeTopology, EdgeCountsMatchTheDefinitionOnDamagedMeshes) {
+  // A closed torus damaged at random: faces removed, flipped and repeated (once or twice), and
+  // fans around hub vertices, so buckets range from clean pairs through every kind of bad edge
+  // to more than eight entries (the sorted fallback), on each of which the counts must agree.
+  std::mt19937 random(11);
+  for (int trial = 0; trial < 20; ++trial) {
+    SCOPED_TRACE(trial);
+    TriangleMesh mesh = torus_mesh(1.0, 0.4, 24, 12);
+    const auto vertex_count = static_cast<std::uint32_t>(mesh.positions.size());
+    std::uniform_int_distribution<std::size_t> face(0, mesh.triangles.size() - 1);
+    std::uniform_int_distribution<std::uint32_t> vertex(0, vertex_count - 1);
+    const int damage = trial % 4 == 0 ? 0 : 1 + trial;
+    for (int k = 0; k < damage; ++k) {
+      Triangle& t = mesh.triangles[face(random)];
+      switch (random() % 4) {
+        case 0: t = mesh.triangles.back(), mesh.triangles.pop_back(); break;
+        case 1: std::swap(t[1], t[2]); break;
+        case 2: mesh.triangles.push_back(t); break;
+        default: mesh.triangles.push_back({t[0], t[2], t[1]}); break;
+      }
+    }
+    // A hub joined to a ring of random vertices, closed or not.
+    if (trial % 2 == 1) {
+      mesh.positions.push_back(Eigen::Vector3d::Zero());
+      const std::uint32_t hub = vertex_count;
+      std::vector<std::uint32_t> ring(5 + trial);
+      for (std::uint32_t& v : ring) v = vertex(random);
+      for (std::size_t i = 0; i + (trial % 3 == 0 ? 0 : 1) < ring.size(); ++i) {
+        mesh.triangles.push_back({hub, ring[i], ring[(i + 1) % ring.size()]});
+      }
+    }
+    std::erase_if(mesh.triangles,
+                  [](const Triangle& t) { return t[0] == t[1] || t[1] == t[2] || t[2] == t[0]; });
+    const Topology expected = edge_counts_by_map(mesh);
+    const Topology topology = analyze_topology(mesh);
+    EXPECT_EQ(topology.boundary_edges, expected.boundary_edges);
+    EXPECT_EQ(topology.inconsistent_edges, expected.inconsistent_edges);
+    EXPECT_EQ(topology.non_manifold_edges, expected.non_manifold_edges);
+    if (damage == 0 && trial % 2 == 0) {
+      EXPECT_TRUE(topology.closed());
+    }
+  }
 }
 
 }  // namespace
