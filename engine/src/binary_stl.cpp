@@ -13,6 +13,14 @@
 #include <string>
 #include <system_error>
 
+#if defined(__unix__) || defined(__APPLE__)
+#include <sys/mman.h>
+#include <unistd.h>
+#define TUMBLE_HAS_MMAP 1
+#else
+#define TUMBLE_HAS_MMAP 0
+#endif
+
 #include "engine/input_error.hpp"
 #include "engine/vertex_welding.hpp"
 #include "split_in_two.hpp"
@@ -45,6 +53,60 @@ struct CloseFile {
   void operator()(std::FILE* stream) const { std::fclose(stream); }
 };
 
+/// The bytes of a file from `offset` on, mapped read-only where the system can (no copy, and
+/// no fresh pages to zero: on a 50 MB file those cost more than the welding), read into memory
+/// otherwise. A mapped file that another program truncates while it is read raises SIGBUS, as
+/// with any memory-mapped input; tumble does not guard against that race.
+class FileBytes {
+ public:
+  FileBytes(std::FILE* stream, std::size_t offset, std::size_t count) : count_(count) {
+    if (count == 0) return;
+#if TUMBLE_HAS_MMAP
+    const auto page = static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
+    const std::size_t lead = offset % page;
+    int flags = MAP_PRIVATE;
+#if defined(MAP_POPULATE)
+    flags |= MAP_POPULATE;  // fault every page in at once
+#endif
+    void* const mapped = mmap(nullptr, lead + count, PROT_READ, flags, fileno(stream),
+                              static_cast<off_t>(offset - lead));
+    if (mapped != MAP_FAILED) {
+      mapping_ = static_cast<unsigned char*>(mapped);
+      mapping_bytes_ = lead + count;
+      data_ = mapping_ + lead;
+      return;
+    }
+#endif
+    // No mapping: read the bytes into fresh memory (huge pages: see advise_huge_pages).
+    buffer_ = std::make_unique_for_overwrite<unsigned char[]>(count);
+    advise_huge_pages(buffer_.get(), count);
+    if (std::fseek(stream, static_cast<long>(offset), SEEK_SET) == 0 &&
+        std::fread(buffer_.get(), 1, count, stream) == count) {
+      data_ = buffer_.get();
+    }
+  }
+  ~FileBytes() {
+#if TUMBLE_HAS_MMAP
+    if (mapping_ != nullptr) munmap(mapping_, mapping_bytes_);
+#endif
+  }
+  FileBytes(const FileBytes&) = delete;
+  FileBytes& operator=(const FileBytes&) = delete;
+
+  /// The bytes, or nullptr when they could not be read (never for zero bytes).
+  const unsigned char* data() const {
+    return count_ == 0 ? &empty_ : data_;
+  }
+
+ private:
+  std::size_t count_ = 0;
+  const unsigned char* data_ = nullptr;
+  unsigned char* mapping_ = nullptr;
+  std::size_t mapping_bytes_ = 0;
+  std::unique_ptr<unsigned char[]> buffer_;
+  static constexpr unsigned char empty_ = 0;
+};
+
 }  // namespace
 
 std::optional<BinaryStl> read_binary_stl(const std::filesystem::path& file) {
@@ -68,20 +130,15 @@ std::optional<BinaryStl> read_binary_stl(const std::filesystem::path& file) {
                    std::to_string((std::numeric_limits<std::uint32_t>::max() - 1) / 3) + ")");
   }
 
-  // The records, read whole into memory that the welding reads in order (huge pages: see
-  // advise_huge_pages).
-  const std::size_t body_bytes = kRecordBytes * triangles;
-  const auto body =
-      std::make_unique_for_overwrite<unsigned char[]>(std::max<std::size_t>(body_bytes, 1));
-  advise_huge_pages(body.get(), body_bytes);
-  if (std::fread(body.get(), 1, body_bytes, stream.get()) != body_bytes) {
-    fail(file, "could not be read to the end");
-  }
+  // The records, which the welding reads in order.
+  const FileBytes records(stream.get(), kHeaderBytes, kRecordBytes * triangles);
+  if (records.data() == nullptr) fail(file, "could not be read to the end");
+  const unsigned char* const body = records.data();
 
   // Weld the corners on the file's own float bits. Corner v is corner v % 3 of record v / 3.
-  const auto corner = [&body](std::size_t v) {
+  const auto corner = [body](std::size_t v) {
     const unsigned char* const bytes =
-        body.get() + (v / 3) * kRecordBytes + kCornersOffset + (v % 3) * 12;
+        body + (v / 3) * kRecordBytes + kCornersOffset + (v % 3) * 12;
     return std::array<float, 3>{std::bit_cast<float>(little_uint32(bytes)),
                                 std::bit_cast<float>(little_uint32(bytes + 4)),
                                 std::bit_cast<float>(little_uint32(bytes + 8))};
