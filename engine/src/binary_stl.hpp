@@ -3,9 +3,9 @@
 //
 // assimp reads binary STL as well, but builds what inspection never uses: a normal for each
 // face corner (36 bytes a triangle) and a heap-allocated index array for each face, before the
-// engine welds the soup. On a million-triangle file that costs more than the welding and every
-// check together. This reader keeps the file's bytes, welds the corner positions straight from
-// them, and builds the indexed mesh in one step. Its result is the one import_mesh makes
+// engine welds the soup. On a million-triangle file assimp's read takes longer than the whole
+// inspection with this reader, which maps the file, welds the corner positions straight from
+// its bytes, and builds the indexed mesh in one step. Its result is the one import_mesh makes
 // through assimp (the tests compare the two on every STL fixture).
 //
 // The format (3D Systems, "StereoLithography Interface Specification", 1988; little-endian): an

@@ -180,7 +180,11 @@ TriangleMesh import_mesh(const std::filesystem::path& file, ImportStats* stats,
   if (stl_reader == StlReader::tumble) stl = detail::read_binary_stl(file);
   if (stl) {
     mesh = std::move(stl->mesh);
-    if (stats != nullptr) *stats = {stl->welded_vertices, true, true};
+    if (stats != nullptr) {
+      stats->welded_vertices = stl->welded_vertices;
+      stats->distinct_positions = true;  // one mesh, no transform, welded as a whole
+      stats->own_stl_reader = true;
+    }
   } else {
     mesh = import_with_assimp(file, stats);
   }
