@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "engine/prefetch.hpp"
+
 namespace tumble::engine {
 namespace {
 
@@ -39,6 +41,12 @@ struct Sums {
   }
 };
 
+/// Hints the processor to fetch the corners of triangle `i`, if there is one (engine/prefetch.hpp).
+inline void prefetch_corners(const TriangleMesh& mesh, std::size_t i) {
+  if (i >= mesh.triangles.size()) return;
+  for (const std::uint32_t v : mesh.triangles[i]) detail::prefetch(mesh.positions.data() + v);
+}
+
 }  // namespace
 
 MomentIntegrals solid_integrals(const TriangleMesh& mesh, const Eigen::Vector3d& reference) {
@@ -46,7 +54,10 @@ MomentIntegrals solid_integrals(const TriangleMesh& mesh, const Eigen::Vector3d&
   // moment det/24 * s and second moment det/120 * (a a^T + b b^T + c c^T + s s^T).
   Sums sums;
   const Eigen::Vector3d* p = mesh.positions.data();
-  for (const auto& t : mesh.triangles) {
+  const std::size_t count = mesh.triangles.size();
+  for (std::size_t i = 0; i < count; ++i) {
+    prefetch_corners(mesh, i + detail::kPrefetchDistance);
+    const auto& t = mesh.triangles[i];
     const Eigen::Vector3d a = p[t[0]] - reference;
     const Eigen::Vector3d b = p[t[1]] - reference;
     const Eigen::Vector3d c = p[t[2]] - reference;

@@ -7,8 +7,6 @@
 //   layout), sorting the few edges of each bucket and comparing directions.
 #include "engine/mesh_topology.hpp"
 
-#include "engine/vertex_welding.hpp"
-
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -17,6 +15,9 @@
 #include <memory>
 #include <numeric>
 #include <stdexcept>
+
+#include "engine/prefetch.hpp"
+#include "engine/vertex_welding.hpp"
 
 namespace tumble::engine {
 namespace {
@@ -34,6 +35,8 @@ class DisjointSets {
     }
     return x;
   }
+  /// Hints that x's parent will be needed soon (engine/prefetch.hpp).
+  void prefetch(std::uint32_t x) const { detail::prefetch<true>(parent_.data() + x); }
   void unite(std::uint32_t a, std::uint32_t b) {
     a = find(a);
     b = find(b);
@@ -192,15 +195,24 @@ void find_parts(const TriangleMesh& mesh, Topology& topology) {
   // Connected parts through shared vertices, numbered in order of first triangle.
   const std::size_t vertex_count = mesh.positions.size();
   topology.parts = 0;
+  // Each triangle's parents are fetched a few triangles ahead (engine/prefetch.hpp).
   DisjointSets sets(vertex_count);
-  for (const auto& t : mesh.triangles) {
+  const std::size_t triangle_count = mesh.triangles.size();
+  for (std::size_t i = 0; i < triangle_count; ++i) {
+    if (i + detail::kPrefetchDistance < triangle_count) {
+      for (const std::uint32_t v : mesh.triangles[i + detail::kPrefetchDistance]) sets.prefetch(v);
+    }
+    const auto& t = mesh.triangles[i];
     sets.unite(t[0], t[1]);
     sets.unite(t[1], t[2]);
   }
   constexpr std::uint32_t kUnassigned = std::numeric_limits<std::uint32_t>::max();
   std::vector<std::uint32_t> part_of_root(vertex_count, kUnassigned);
-  topology.triangle_part.resize(mesh.triangles.size());
-  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+  topology.triangle_part.resize(triangle_count);
+  for (std::size_t i = 0; i < triangle_count; ++i) {
+    if (i + detail::kPrefetchDistance < triangle_count) {
+      sets.prefetch(mesh.triangles[i + detail::kPrefetchDistance][0]);
+    }
     std::uint32_t& part = part_of_root[sets.find(mesh.triangles[i][0])];
     if (part == kUnassigned) part = static_cast<std::uint32_t>(topology.parts++);
     topology.triangle_part[i] = part;

@@ -4,15 +4,18 @@
 //   BM_AssimpReadStl         assimp reading a 1M-triangle binary STL, no post-processing
 //   BM_InspectStl            `tumble inspect` end to end on that file: import, weld, checks,
 //                            integrals, principal axes (the budget: 2x assimp's read)
+//   BM_AssimpReadShuffledStl, BM_InspectShuffledStl  the same two on the torus with its
+//                            triangles shuffled (the worst case for locality)
 //   BM_InspectStlThroughAssimp  the same with assimp reading the file (tumble's own binary
 //                            STL reader bypassed), for comparison
 //   BM_Weld, BM_Topology     the two linear-time passes, for the breakdown
+#include <assimp/scene.h>
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <assimp/Importer.hpp>
-#include <assimp/scene.h>
-
 #include <filesystem>
+#include <random>
 
 #include "app/inspect_command.hpp"
 #include "engine/mass_properties.hpp"
@@ -36,6 +39,21 @@ const std::filesystem::path& million_triangle_stl() {
   static const std::filesystem::path file = [] {
     const auto path = std::filesystem::temp_directory_path() / "tumble_bench_torus_1m.stl";
     testing::write_binary_stl(path, million_triangle_mesh());
+    return path;
+  }();
+  return file;
+}
+
+/// The same torus with its triangles in random order: neighbours far apart in the file, so the
+/// weld's cache of recent positions catches almost nothing and every pass reads its vertices at
+/// random. The worst case for locality.
+const std::filesystem::path& shuffled_million_triangle_stl() {
+  static const std::filesystem::path file = [] {
+    engine::TriangleMesh mesh = million_triangle_mesh();
+    std::mt19937 random(3);
+    std::shuffle(mesh.triangles.begin(), mesh.triangles.end(), random);
+    const auto path = std::filesystem::temp_directory_path() / "tumble_bench_torus_1m_shuffled.stl";
+    testing::write_binary_stl(path, mesh);
     return path;
   }();
   return file;
@@ -74,8 +92,7 @@ void BM_Topology(benchmark::State& state) {
 }
 BENCHMARK(BM_Topology)->Unit(benchmark::kMillisecond);
 
-void BM_AssimpReadStl(benchmark::State& state) {
-  const auto& file = million_triangle_stl();
+void assimp_read(benchmark::State& state, const std::filesystem::path& file) {
   for (auto _ : state) {
     Assimp::Importer importer;
     const aiScene* scene = importer.ReadFile(file.string(), 0);
@@ -84,14 +101,31 @@ void BM_AssimpReadStl(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations() * 1'000'000);
 }
-BENCHMARK(BM_AssimpReadStl)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-void BM_InspectStl(benchmark::State& state) {
-  const auto& file = million_triangle_stl();
+void inspect(benchmark::State& state, const std::filesystem::path& file) {
   for (auto _ : state) benchmark::DoNotOptimize(app::inspect_file(file, {}));
   state.SetItemsProcessed(state.iterations() * 1'000'000);
 }
+
+void BM_AssimpReadStl(benchmark::State& state) {
+  assimp_read(state, million_triangle_stl());
+}
+BENCHMARK(BM_AssimpReadStl)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_InspectStl(benchmark::State& state) {
+  inspect(state, million_triangle_stl());
+}
 BENCHMARK(BM_InspectStl)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_AssimpReadShuffledStl(benchmark::State& state) {
+  assimp_read(state, shuffled_million_triangle_stl());
+}
+BENCHMARK(BM_AssimpReadShuffledStl)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_InspectShuffledStl(benchmark::State& state) {
+  inspect(state, shuffled_million_triangle_stl());
+}
+BENCHMARK(BM_InspectShuffledStl)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 /// The same inspection with assimp reading the file instead of tumble's binary STL reader: the
 /// pipeline as it was before that reader, for the record.
