@@ -28,7 +28,8 @@ enum class StlReader { tumble, assimp };
 /// one triangle mesh, with each node's accumulated transform applied (a mirroring transform
 /// reverses the winding so normals stay outward). Vertices at identical positions within each
 /// of the file's meshes are welded on the way; those shared between meshes are left to
-/// weld_by_position. Polygons are triangulated; points and lines are ignored. Throws
+/// weld_by_position. Polygons are triangulated; points and lines are ignored. Binary STL goes
+/// to tumble's own reader unless `stl_reader` asks for assimp (the mesh is the same). Throws
 /// InputError naming the file when it cannot be read, has an unknown format, holds no
 /// triangles or has non-finite coordinates.
 TriangleMesh import_mesh(const std::filesystem::path& file, ImportStats* stats = nullptr,
