@@ -4,16 +4,17 @@
 //   BM_AssimpReadStl         assimp reading a 1M-triangle binary STL, no post-processing
 //   BM_InspectStl            `tumble inspect` end to end on that file: import, weld, checks,
 //                            integrals, principal axes (the budget: 2x assimp's read)
-//   BM_AssimpReadShuffledStl, BM_InspectShuffledStl  the same two on the torus with its
-//                            triangles shuffled (the worst case for locality)
 //   BM_InspectStlThroughAssimp  the same with assimp reading the file (tumble's own binary
 //                            STL reader bypassed), for comparison
+//   BM_AssimpReadShuffledStl, BM_InspectShuffledStl  the first two on the same torus with
+//                            its triangles shuffled (the worst case for locality)
 //   BM_Weld, BM_Topology     the two linear-time passes, for the breakdown
-#include <assimp/scene.h>
 #include <benchmark/benchmark.h>
 
-#include <algorithm>
 #include <assimp/Importer.hpp>
+#include <assimp/scene.h>
+
+#include <algorithm>
 #include <filesystem>
 #include <random>
 
