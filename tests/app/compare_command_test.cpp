@@ -21,6 +21,7 @@
 #include "support/command_test.hpp"
 #include "support/image_compare.hpp"
 #include "support/run_command.hpp"
+#include "support/input_error.hpp"
 
 namespace tumble::app {
 namespace {
@@ -78,12 +79,7 @@ TEST(CompareOptionsParsing, IntegratorListNeedsTwoOrMoreKnownDistinctNames) {
   EXPECT_EQ(comparison_integrators("rk4,splitting4,exact"),
             (std::vector<std::string>{"rk4", "splitting4", "exact"}));
   const auto message = [](const std::string& text) {
-    try {
-      comparison_integrators(text);
-    } catch (const engine::InputError& error) {
-      return std::string(error.what());
-    }
-    return std::string("no error");
+    return testing::input_error_of([&] { comparison_integrators(text); }, text);
   };
   EXPECT_THAT(message("rk4,nope"), HasSubstr("--integrators: unknown integrator 'nope'"));
   EXPECT_THAT(message("rk4"), HasSubstr("at least two integrators"));

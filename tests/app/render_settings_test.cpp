@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/input_error.hpp"
+#include "support/input_error.hpp"
 
 namespace tumble::app {
 namespace {
@@ -20,14 +21,9 @@ RenderSettings parse(const std::string& text) {
   return parse_render_settings(json::parse(text), "scene.json", kBodies);
 }
 
-/// The message of the InputError that parsing `text` throws ("" when it does not throw).
+/// The message of the InputError that parsing `text` throws (a failure if it does not).
 std::string error_of(const std::string& text) {
-  try {
-    parse(text);
-  } catch (const engine::InputError& error) {
-    return error.what();
-  }
-  return "";
+  return testing::input_error_of([&] { parse(text); }, text);
 }
 
 TEST(RenderSettings, EmptyObjectGivesTheDefaults) {
@@ -206,17 +202,9 @@ TEST(RenderSettings, NonFiniteNumbersAreRefused) {
   // JSON text has no infinity, but a json value built in code (or by a lenient reader) may.
   json render;
   render["time_scale"] = std::numeric_limits<double>::infinity();
-  EXPECT_THROW(
-      {
-        try {
-          parse_render_settings(render, "scene.json", kBodies);
-        } catch (const engine::InputError& error) {
-          EXPECT_THAT(error.what(),
-                      HasSubstr("render.time_scale: expected a finite number, got inf"));
-          throw;
-        }
-      },
-      engine::InputError);
+  EXPECT_THAT(
+      testing::input_error_of([&] { parse_render_settings(render, "scene.json", kBodies); }),
+      HasSubstr("render.time_scale: expected a finite number, got inf"));
 }
 
 }  // namespace

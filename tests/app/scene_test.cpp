@@ -13,6 +13,7 @@
 
 #include "engine/input_error.hpp"
 #include "support/run_command.hpp"
+#include "support/input_error.hpp"
 
 namespace tumble::app {
 namespace {
@@ -33,13 +34,7 @@ json base_scene() {
 
 /// The message parse_scene throws for `text` (empty, with a test failure, when it accepts it).
 std::string error_of_text(const std::string& text) {
-  try {
-    parse_scene(text, kFile);
-  } catch (const engine::InputError& error) {
-    return error.what();
-  }
-  ADD_FAILURE() << "accepted: " << text;
-  return "";
+  return testing::input_error_of([&] { parse_scene(text, kFile); }, text);
 }
 std::string error_of(const json& scene) {
   return error_of_text(scene.dump());
@@ -372,12 +367,8 @@ TEST(SceneErrors, BodyNamesAreUniqueAndPrintable) {
 
 TEST(SceneErrors, UnreadableSceneFile) {
   const auto dir = testing::fresh_directory("scene_unreadable");
-  try {
-    load_scene(dir / "missing.json");
-    ADD_FAILURE() << "no error";
-  } catch (const engine::InputError& error) {
-    EXPECT_THAT(error.what(), HasSubstr("missing.json: cannot open the scene file"));
-  }
+  EXPECT_THAT(testing::input_error_of([&] { load_scene(dir / "missing.json"); }),
+              HasSubstr("missing.json: cannot open the scene file"));
   std::filesystem::remove_all(dir);
 }
 
@@ -564,13 +555,9 @@ TEST_F(SceneCompile, MeshBodyUsesTheMeshMassProperties) {
 TEST_F(SceneCompile, MeshErrorsArePrefixedWithTheJsonPath) {
   json scene = base_scene();
   scene["bodies"][0] = {{"mesh", "../meshes/nowhere.obj"}, {"mass", 1.0}};
-  try {
-    compile(scene);
-    ADD_FAILURE() << "no error";
-  } catch (const engine::InputError& error) {
-    EXPECT_THAT(error.what(), HasSubstr("scenes/scene.json: bodies[0].mesh: "));
-    EXPECT_THAT(error.what(), HasSubstr("nowhere.obj"));
-  }
+  const std::string message = testing::input_error_of([&] { compile(scene); });
+  EXPECT_THAT(message, HasSubstr("scenes/scene.json: bodies[0].mesh: "));
+  EXPECT_THAT(message, HasSubstr("nowhere.obj"));
 }
 
 }  // namespace

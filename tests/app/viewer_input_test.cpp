@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "engine/input_error.hpp"
+#include "support/input_error.hpp"
 
 namespace tumble::app::viewer {
 namespace {
@@ -156,14 +157,9 @@ std::vector<ScriptStep> parse(const std::string& text) {
   return parse_script(text, "run.txt");
 }
 
-/// The message of the InputError that parsing `text` throws ("" when it does not throw).
+/// The message of the InputError that parsing `text` throws (a failure if it does not).
 std::string error_of(const std::string& text) {
-  try {
-    parse(text);
-  } catch (const engine::InputError& error) {
-    return error.what();
-  }
-  return "";
+  return testing::input_error_of([&] { parse(text); }, text);
 }
 
 const InputEvent& event_of(const ScriptStep& step) {
@@ -384,7 +380,7 @@ TEST(ViewerScript, MissingRestOfLine) {
 
 TEST(ViewerScript, LoadsAFile) {
   const std::filesystem::path file =
-      std::filesystem::path(testing::TempDir()) / "viewer_input_test_script.txt";
+      std::filesystem::path(::testing::TempDir()) / "viewer_input_test_script.txt";
   {
     std::ofstream out(file);
     out << "0 move 1 2\n0.5 quit\n";
@@ -396,28 +392,16 @@ TEST(ViewerScript, LoadsAFile) {
     std::ofstream out(file);
     out << "0 quit\nx quit\n";
   }
-  try {
-    load_script(file);
-    FAIL() << "no error";
-  } catch (const engine::InputError& error) {
-    EXPECT_THAT(error.what(), HasSubstr(file.string() + ":2: expected a time in seconds"));
-  }
+  EXPECT_THAT(testing::input_error_of([&] { load_script(file); }),
+              HasSubstr(file.string() + ":2: expected a time in seconds"));
   std::filesystem::remove(file);
 }
 
 TEST(ViewerScript, MissingFileNamesIt) {
-  try {
-    load_script("/nonexistent/run.txt");
-    FAIL() << "no error";
-  } catch (const engine::InputError& error) {
-    EXPECT_THAT(error.what(), HasSubstr("/nonexistent/run.txt: cannot open the script"));
-  }
-  try {
-    load_script(testing::TempDir());
-    FAIL() << "no error";
-  } catch (const engine::InputError& error) {
-    EXPECT_THAT(error.what(), HasSubstr(": is a directory, expected a script"));
-  }
+  EXPECT_THAT(testing::input_error_of([] { load_script("/nonexistent/run.txt"); }),
+              HasSubstr("/nonexistent/run.txt: cannot open the script"));
+  EXPECT_THAT(testing::input_error_of([] { load_script(::testing::TempDir()); }),
+              HasSubstr(": is a directory, expected a script"));
 }
 
 // --- ScriptPlayer ----------------------------------------------------------------------------

@@ -16,6 +16,7 @@
 #include "engine/mesh_import.hpp"
 #include "engine/primitive_meshes.hpp"
 #include "mesh_fixtures.hpp"
+#include "support/input_error.hpp"
 
 namespace tumble::engine {
 namespace {
@@ -84,13 +85,8 @@ void expect_same_as_assimp(const std::filesystem::path& file) {
 
 /// The InputError text of importing `file` with `reader`.
 std::string import_error(const std::filesystem::path& file, StlReader reader) {
-  try {
-    import_mesh(file, nullptr, reader);
-  } catch (const InputError& error) {
-    return error.what();
-  }
-  ADD_FAILURE() << "no InputError for " << file;
-  return {};
+  return tumble::testing::input_error_of([&] { import_mesh(file, nullptr, reader); },
+                                         file.string());
 }
 
 TEST(BinaryStl, BoxIsAssimpsMeshAndTheClosedForm) {

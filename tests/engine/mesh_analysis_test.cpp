@@ -16,6 +16,7 @@
 #include "engine/primitive_meshes.hpp"
 #include "engine/rational_reference.hpp"
 #include "inertia_expectations.hpp"
+#include "support/input_error.hpp"
 
 namespace tumble::engine {
 namespace {
@@ -70,13 +71,8 @@ Eigen::Matrix3d shifted(const Eigen::Matrix3d& inertia, double mass, const Eigen
 /// The message of the InputError `analyze_mesh` throws (fails the test if it does not).
 std::string error_of(const TriangleMesh& mesh, const MassOptions& options = {},
                      const std::string& source = "part.stl") {
-  try {
-    analyze_mesh(mesh, options, source);
-  } catch (const InputError& error) {
-    return error.what();
-  }
-  ADD_FAILURE() << "analyze_mesh accepted the mesh";
-  return {};
+  return tumble::testing::input_error_of([&] { analyze_mesh(mesh, options, source); },
+                                         "the mesh");
 }
 
 // ---------------------------------------------------------------------------------------------

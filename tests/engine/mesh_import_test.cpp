@@ -40,6 +40,7 @@
 #include "engine/input_error.hpp"
 #include "engine/mesh_analysis.hpp"
 #include "mesh_fixtures.hpp"
+#include "support/input_error.hpp"
 
 namespace tumble::engine {
 namespace {
@@ -49,6 +50,7 @@ using mesh_fixtures::Polyhedron;
 using mesh_fixtures::SolidMoments;
 using mesh_fixtures::TempDir;
 using ::testing::HasSubstr;
+using tumble::testing::input_error_of;
 using ::testing::IsEmpty;
 using ::testing::StartsWith;
 namespace fixtures = mesh_fixtures;
@@ -138,17 +140,6 @@ void expect_body(const MeshReport& report, const SolidMoments& expected, double 
       << inertia;
 }
 
-/// The message of the InputError `action` throws (a failure if it throws nothing).
-template <typename Action>
-std::string error_message(Action&& action) {
-  try {
-    action();
-  } catch (const InputError& error) {
-    return error.what();
-  }
-  ADD_FAILURE() << "no InputError thrown";
-  return {};
-}
 
 // --- The oracle itself ---------------------------------------------------------------------
 
@@ -495,7 +486,7 @@ TEST(MeshImport, FbxTwoModelsOneMirroredCombineIntoOneBody) {
 TEST(MeshImportErrors, NoSuchFile) {
   TempDir dir;
   const auto file = dir / "missing.stl";
-  const std::string message = error_message([&] { import_mesh(file); });
+  const std::string message = input_error_of([&] { import_mesh(file); });
   EXPECT_THAT(message, StartsWith(file.string() + ": "));
   EXPECT_THAT(message, HasSubstr("no such file"));
 }
@@ -504,7 +495,7 @@ TEST(MeshImportErrors, Directory) {
   TempDir dir;
   const auto folder = dir / "meshes.obj";
   std::filesystem::create_directory(folder);
-  const std::string message = error_message([&] { import_mesh(folder); });
+  const std::string message = input_error_of([&] { import_mesh(folder); });
   EXPECT_THAT(message, StartsWith(folder.string() + ": "));
   EXPECT_THAT(message, HasSubstr("is a directory"));
 }
@@ -514,7 +505,7 @@ TEST(MeshImportErrors, EmptyFile) {
   for (const char* name : {"empty.stl", "empty.obj", "empty.gltf"}) {
     const auto file = dir / name;
     fixtures::write_file(file, "");
-    const std::string message = error_message([&] { import_mesh(file); });
+    const std::string message = input_error_of([&] { import_mesh(file); });
     EXPECT_THAT(message, StartsWith(file.string() + ": "));
     EXPECT_THAT(message, HasSubstr("is empty"));
   }
@@ -533,7 +524,7 @@ TEST(MeshImportErrors, UnknownFormat) {
   for (const char* name : {"noise.xyz", "noise"}) {
     const auto file = dir / name;
     fixtures::write_file(file, garbage());
-    const std::string message = error_message([&] { import_mesh(file); });
+    const std::string message = input_error_of([&] { import_mesh(file); });
     EXPECT_THAT(message, StartsWith(file.string() + ": "));
     EXPECT_THAT(message, HasSubstr("unknown or unsupported mesh format"));
   }
@@ -545,7 +536,7 @@ TEST(MeshImportErrors, GarbageWithAKnownExtension) {
   TempDir dir;
   const auto file = dir / "noise.stl";
   fixtures::write_file(file, garbage());
-  const std::string message = error_message([&] { import_mesh(file); });
+  const std::string message = input_error_of([&] { import_mesh(file); });
   EXPECT_THAT(message, StartsWith(file.string() + ": "));
   EXPECT_THAT(message, HasSubstr("cannot be read as a mesh"));
   EXPECT_THAT(message, HasSubstr("STL"));
@@ -565,7 +556,7 @@ TEST(MeshImportErrors, TruncatedGltf) {
   for (const auto& file : {gltf, glb}) {
     SCOPED_TRACE(file.filename().string());
     std::filesystem::resize_file(file, std::filesystem::file_size(file) / 2);
-    const std::string message = error_message([&] { import_mesh(file); });
+    const std::string message = input_error_of([&] { import_mesh(file); });
     EXPECT_THAT(message, StartsWith(file.string() + ": "));
     EXPECT_THAT(message, HasSubstr("unknown or unsupported mesh format"));
   }
@@ -580,7 +571,7 @@ TEST(MeshImportErrors, GltfWithMissingExternalBuffer) {
             R"("buffers":[{"byteLength":36,"uri":"missing.bin"}],)"
             R"("bufferViews":[{"buffer":0,"byteLength":36}],)"
             R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}]})");
-  const std::string message = error_message([&] { import_mesh(file); });
+  const std::string message = input_error_of([&] { import_mesh(file); });
   EXPECT_THAT(message, StartsWith(file.string() + ": "));
   EXPECT_THAT(message, HasSubstr("cannot be read as a mesh"));
   EXPECT_THAT(message, HasSubstr("missing.bin"));
@@ -591,7 +582,7 @@ TEST(MeshImportErrors, GarbageObjHoldsNoTriangles) {
   TempDir dir;
   const auto file = dir / "noise.obj";
   fixtures::write_file(file, garbage());
-  const std::string message = error_message([&] { import_mesh(file); });
+  const std::string message = input_error_of([&] { import_mesh(file); });
   EXPECT_THAT(message, StartsWith(file.string() + ": "));
   EXPECT_THAT(message, HasSubstr("contains no triangles"));
 }
@@ -602,7 +593,7 @@ TEST(MeshImportErrors, OnlyPointsAndLines) {
   TempDir dir;
   const auto file = dir / "wire.obj";
   fixtures::write_file(file, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nl 1 2 3 4 1\np 1 2 3 4\n");
-  const std::string message = error_message([&] { import_mesh(file); });
+  const std::string message = input_error_of([&] { import_mesh(file); });
   EXPECT_THAT(message, StartsWith(file.string() + ": "));
   EXPECT_THAT(message, HasSubstr("contains no triangles"));
 }
@@ -631,7 +622,7 @@ TEST(MeshImportErrors, NonFiniteCoordinates) {
   for (const char* name : {"nan.obj", "inf.obj", "inf.ply", "nan.stl", "inf.glb"}) {
     SCOPED_TRACE(name);
     const auto file = dir / name;
-    const std::string message = error_message([&] { import_mesh(file); });
+    const std::string message = input_error_of([&] { import_mesh(file); });
     EXPECT_THAT(message, StartsWith(file.string() + ": "));
     EXPECT_THAT(message, HasSubstr("non-finite coordinate"));
   }
@@ -643,7 +634,7 @@ TEST(MeshImportErrors, OpenMeshSuggestsShell) {
   Polyhedron open = test_box();
   open.faces.pop_back();
   fixtures::write_obj(file, {open});
-  const std::string message = error_message([&] { analyze_file(file); });
+  const std::string message = input_error_of([&] { analyze_file(file); });
   EXPECT_THAT(message, StartsWith(file.string() + ": "));
   EXPECT_THAT(message, HasSubstr("open"));
   EXPECT_THAT(message, HasSubstr("--shell"));
