@@ -17,6 +17,27 @@
 namespace tumble::engine {
 namespace {
 
+/// Welded numbering by first occurrence, computed with an ordered map (-0 folded onto +0).
+struct Oracle {
+  std::vector<std::uint32_t> index;
+  std::vector<std::uint32_t> kept;
+};
+
+Oracle first_occurrence_numbering(const std::vector<std::array<float, 3>>& positions) {
+  std::map<std::array<float, 3>, std::uint32_t> number_of;
+  Oracle oracle;
+  oracle.index.resize(positions.size());
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    const std::array<float, 3> key{positions[i][0] + 0.0f, positions[i][1] + 0.0f,
+                                   positions[i][2] + 0.0f};
+    const auto [it, inserted] =
+        number_of.try_emplace(key, static_cast<std::uint32_t>(oracle.kept.size()));
+    if (inserted) oracle.kept.push_back(static_cast<std::uint32_t>(i));
+    oracle.index[i] = it->second;
+  }
+  return oracle;
+}
+
 TEST(WeldPositions, TwoThreadWeldMatchesFirstOccurrenceNumbering) {
   // 1.5 M float positions from 40,000 distinct points, every 7th copy with -0. Blocks in random
   // order (most repeats far apart, many crossing the two threads' halves) alternate with blocks
@@ -37,49 +58,16 @@ TEST(WeldPositions, TwoThreadWeldMatchesFirstOccurrenceNumbering) {
     }
   }
 
-  // The oracle: an ordered map numbering positions by first occurrence (-0 folded onto +0).
-  std::map<std::array<float, 3>, std::uint32_t> number_of;
-  std::vector<std::uint32_t> expected_index(positions.size());
-  std::vector<std::uint32_t> expected_kept;
-  for (std::size_t i = 0; i < positions.size(); ++i) {
-    const std::array<float, 3> key{positions[i][0] + 0.0f, positions[i][1] + 0.0f,
-                                   positions[i][2] + 0.0f};
-    const auto [it, inserted] =
-        number_of.try_emplace(key, static_cast<std::uint32_t>(expected_kept.size()));
-    if (inserted) expected_kept.push_back(static_cast<std::uint32_t>(i));
-    expected_index[i] = it->second;
-  }
-
+  const Oracle expected = first_occurrence_numbering(positions);
   const WeldMap map =
       weld_positions<float>(positions.size(), [&](std::size_t i) { return positions[i]; });
 
-  ASSERT_EQ(map.kept, expected_kept);
+  ASSERT_EQ(map.kept, expected.kept);
   std::size_t mismatches = 0;
   for (std::size_t i = 0; i < positions.size(); ++i) {
-    if (map.new_index[i] != expected_index[i]) ++mismatches;
+    if (map.new_index[i] != expected.index[i]) ++mismatches;
   }
   EXPECT_EQ(mismatches, 0u);
-}
-
-/// Welded numbering by first occurrence, computed with an ordered map (-0 folded onto +0).
-struct Oracle {
-  std::vector<std::uint32_t> index;
-  std::vector<std::uint32_t> kept;
-};
-
-Oracle first_occurrence_numbering(const std::vector<std::array<float, 3>>& positions) {
-  std::map<std::array<float, 3>, std::uint32_t> number_of;
-  Oracle oracle;
-  oracle.index.resize(positions.size());
-  for (std::size_t i = 0; i < positions.size(); ++i) {
-    const std::array<float, 3> key{positions[i][0] + 0.0f, positions[i][1] + 0.0f,
-                                   positions[i][2] + 0.0f};
-    const auto [it, inserted] =
-        number_of.try_emplace(key, static_cast<std::uint32_t>(oracle.kept.size()));
-    if (inserted) oracle.kept.push_back(static_cast<std::uint32_t>(i));
-    oracle.index[i] = it->second;
-  }
-  return oracle;
 }
 
 TEST(WeldPositions, ScratchMemoryGivesTheSameWeld) {
