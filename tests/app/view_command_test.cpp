@@ -59,6 +59,18 @@ bool dark(int r, int g, int b) {
   return r + g + b < 200 && std::abs(r - g) < 12 && std::abs(g - b) < 12;
 }
 
+/// The window as the viewer shows it: the body (over 3000 orange pixels) in the view, and the
+/// control panel on the right, whose grey background (between the blue headers and the plot
+/// frames) covers at least a third of its region.
+void expect_body_and_panel(const render::Image& window) {
+  ASSERT_EQ(window.width, kWidth);
+  ASSERT_EQ(window.height, kHeight);
+  EXPECT_GT(count_pixels(window, kSceneRegion, orange), 3000u);
+  const std::size_t panel_area = static_cast<std::size_t>(kPanelRegion.x1 - kPanelRegion.x0) *
+                                 static_cast<std::size_t>(kPanelRegion.y1 - kPanelRegion.y0);
+  EXPECT_GT(count_pixels(window, kPanelRegion, dark), panel_area / 3);
+}
+
 class ViewCommand : public tumble::testing::CommandTest {
  protected:
   void SetUp() override {
@@ -99,15 +111,9 @@ TEST_F(ViewCommand, DrawsTheBodyAndThePanelsAndSpacePauses) {
       "'" + demo() + "'");
   ASSERT_EQ(result.status, 0) << result.err;
 
-  // The body is drawn in the view and the control panel on the right.
+  // The body is drawn in the view and the control panel on the right, not over the view.
   const render::Image playing1 = shot("playing1.png");
-  ASSERT_EQ(playing1.width, kWidth);
-  ASSERT_EQ(playing1.height, kHeight);
-  EXPECT_GT(count_pixels(playing1, kSceneRegion, orange), 3000u);
-  const std::size_t panel_area = static_cast<std::size_t>(kPanelRegion.x1 - kPanelRegion.x0) *
-                                 static_cast<std::size_t>(kPanelRegion.y1 - kPanelRegion.y0);
-  // Its grey background (between the blue headers and plot frames) covers a third of it.
-  EXPECT_GT(count_pixels(playing1, kPanelRegion, dark), panel_area / 3);
+  expect_body_and_panel(playing1);
   EXPECT_EQ(count_pixels(playing1, PixelRegion{340, 240, kSceneRight, kSceneBottom}, dark), 0u)
       << "no panel over the middle of the view";
 
@@ -170,13 +176,7 @@ TEST_F(ViewCommand, CtrlPWritesAScreenshotAndCtrlRRecordsAVideo) {
   ASSERT_EQ(result.status, 0) << result.err;
   // Named after the scene, in the output folder.
   // The screenshot is the window: the view with the body, and the control panel.
-  const render::Image screenshot = shot("t_handle_flip-1.png");
-  ASSERT_EQ(screenshot.width, kWidth);
-  ASSERT_EQ(screenshot.height, kHeight);
-  EXPECT_GT(count_pixels(screenshot, kSceneRegion, orange), 3000u);
-  EXPECT_GT(count_pixels(screenshot, kPanelRegion, dark),
-            static_cast<std::size_t>((kPanelRegion.x1 - kPanelRegion.x0) *
-                                     (kPanelRegion.y1 - kPanelRegion.y0) / 3));
+  expect_body_and_panel(shot("t_handle_flip-1.png"));
   const std::string probe = probe_video(path("t_handle_flip-1.mp4"));
   ASSERT_THAT(probe, HasSubstr("h264,1280,720,"));
   // Two seconds of wall time at 30 frames/s (give or take the frames around the key presses).
