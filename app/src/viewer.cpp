@@ -135,7 +135,7 @@ bool Viewer::wants_scene_image() const {
   return sink_ != nullptr;
 }
 
-void Viewer::frame_drawn(const render::Image& scene, const render::Image& window) {
+void Viewer::frame_drawn(const render::Image* scene, const render::Image& window) {
   // Screenshots: what the window shows.
   for (const std::filesystem::path& path : screenshots_) {
     try {
@@ -149,10 +149,10 @@ void Viewer::frame_drawn(const render::Image& scene, const render::Image& window
 
   // Recording: a frame each 1/kRecordFps of wall time, the latest drawn state repeated when
   // drawing is slower than that.
-  if (!sink_) return;
+  if (!sink_ || scene == nullptr) return;
   try {
     while (static_cast<double>(recorded_frames_) <= recorded_seconds_ * kRecordFps) {
-      sink_->write(scene);
+      sink_->write(*scene);
       ++recorded_frames_;
     }
   } catch (const std::exception& error) {

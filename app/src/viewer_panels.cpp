@@ -420,10 +420,10 @@ void Panels::plots_section(Viewer& viewer) {
 }
 
 void Panels::files_section(Viewer& viewer) {
+  // Ctrl+O opens the section (DefaultOpen would only apply the first time it is drawn).
   const bool focus = viewer.open_requested;
-  if (!ImGui::CollapsingHeader("Files", focus ? ImGuiTreeNodeFlags_DefaultOpen : 0) && !focus) {
-    return;
-  }
+  if (focus) ImGui::SetNextItemOpen(true);
+  if (!ImGui::CollapsingHeader("Files")) return;
   if (focus) {
     ImGui::SetKeyboardFocusHere();
     viewer.open_requested = false;

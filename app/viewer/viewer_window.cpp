@@ -324,13 +324,14 @@ int run_view(const ViewOptions& options, std::ostream& out, std::ostream& err) {
       played_simulated += viewer.session().time() - simulated_before;
     }
     const viewer::FrameStats stats = frame_clock.stats();
+    // The panels may start a recording while they are drawn: ask once, before the frame.
     const render::DrawList list = viewer.frame();
+    render::Image* const scene = viewer.wants_scene_image() ? &scene_image : nullptr;
     const render::ExtraPass pass = layer.pass(
         static_cast<float>(wall), [&] { panels.draw(viewer, stats, width, height); },
-        [&] { imgui_input.end_frame(ImGui::GetIO()); },
-        viewer.wants_scene_image() ? &scene_image : nullptr);
+        [&] { imgui_input.end_frame(ImGui::GetIO()); }, scene);
     renderer.render(list, window_image, pass);
-    viewer.frame_drawn(viewer.wants_scene_image() ? scene_image : window_image, window_image);
+    viewer.frame_drawn(scene, window_image);
     SDL_UpdateTexture(window.texture, nullptr, window_image.rgba.data(), 4 * width);
     SDL_RenderCopy(window.renderer, window.texture, nullptr, nullptr);
     SDL_RenderPresent(window.renderer);

@@ -227,6 +227,31 @@ TEST_F(ViewCommand, PanelButtonsPlayPauseAndReset) {
   EXPECT_EQ(pixels_differing(start, shot("reset.png"), 0, kSceneRegion), 0u);
 }
 
+TEST_F(ViewCommand, CtrlOOpensTheFilesSectionWhoseRecordButtonRecordsTheView) {
+  // Ctrl+O opens the Files section (drawn closed until then); at 1280x720 its record field is
+  // at (1030, 686), Record at (1183, 686), and then Stop recording at (960, 686). The button
+  // is pressed while the panels are drawn, after the frame's scene image was or was not asked
+  // for: the recording must still hold the view alone, from its first frame.
+  const auto result = view(
+      "0.5 key ctrl+o\n"
+      "0.8 click 1030 686\n"
+      "1.0 type frames/\n"
+      "1.2 click 1183 686\n"
+      "2.2 click 960 686\n"
+      "2.6 quit\n",
+      "--paused '" + demo() + "'");
+  ASSERT_EQ(result.status, 0) << result.err;
+  const std::vector<std::string> frames = tumble::testing::directory_entries(path("frames"));
+  // One second of wall time at 30 frames/s, give or take the frames around the clicks.
+  EXPECT_NEAR(static_cast<double>(frames.size()), 31.0, 6.0);
+  for (const char* name : {"frame_000000.png", "frame_000010.png"}) {
+    const render::Image frame = shot(std::string("frames/") + name);
+    EXPECT_EQ(frame.width, kWidth);
+    EXPECT_GT(count_pixels(frame, kSceneRegion, orange), 3000u) << name;
+    EXPECT_EQ(count_pixels(frame, kPanelRegion, dark), 0u) << name << ": panels recorded";
+  }
+}
+
 TEST_F(ViewCommand, IntegratorPanelAddsARunBeside) {
   // Integrator section at 1280x720: the dt list at (1040, 223) with 0.01 at (1045, 350),
   // "beside the current runs" at (927, 246), Apply at (973, 269).

@@ -77,7 +77,7 @@ class ViewerApp : public testing::CommandTest {
   render::Image frame(double wall_seconds) {
     viewer_->update(wall_seconds);
     render::Image image = renderer_->render(viewer_->frame());
-    viewer_->frame_drawn(image, image);
+    viewer_->frame_drawn(&image, image);
     return image;
   }
 
@@ -258,7 +258,7 @@ TEST_F(ViewerApp, CtrlPWritesTheWindowImageAfterTheNextFrame) {
   viewer_->update(0.1);
   const render::Image window = renderer_->render(viewer_->frame());
   const render::Image scene = solid(window.width, window.height, 10);
-  viewer_->frame_drawn(scene, window);
+  viewer_->frame_drawn(&scene, window);
 
   const std::filesystem::path shot = dir_ / "scene-1.png";
   ASSERT_TRUE(std::filesystem::exists(shot));
@@ -271,7 +271,7 @@ TEST_F(ViewerApp, CtrlPWritesTheWindowImageAfterTheNextFrame) {
   // The next one takes the next name; two in one frame get two names.
   key(Key::kP, true);
   key(Key::kP, true);
-  viewer_->frame_drawn(scene, window);
+  viewer_->frame_drawn(&scene, window);
   EXPECT_EQ(directory_entries(dir_),
             (std::vector<std::string>{"scene-1.png", "scene-2.png", "scene-3.png", "scene.json"}));
 }
@@ -297,7 +297,7 @@ TEST_F(ViewerApp, RecordsAFrameEachThirtiethOfAWallSecond) {
   // since the start, frames 0 .. floor(S x kRecordFps) have been written, so floor(30) + 1.
   for (int i = 0; i < 8; ++i) {
     viewer_->update(0.125);
-    viewer_->frame_drawn(scene, window);
+    viewer_->frame_drawn(&scene, window);
   }
   viewer_->stop_recording();
   EXPECT_FALSE(viewer_->recording());
@@ -313,6 +313,26 @@ TEST_F(ViewerApp, RecordsAFrameEachThirtiethOfAWallSecond) {
   // Frames are the scene image (without the panels), not the window's.
   EXPECT_TRUE(render::read_png(frames / "frame_000030.png").rgba == scene.rgba);
   EXPECT_TRUE(render::read_png(frames / "frame_000000.png").rgba == scene.rgba);
+}
+
+TEST_F(ViewerApp, ARecordingStartedDuringAFrameBeginsWithTheNextSceneImage) {
+  // The Record button is drawn with the panels, after the window loop decided whether to
+  // capture the scene image: that frame has none, and none of the window's is recorded.
+  const std::filesystem::path frames = dir_ / "frames";
+  const render::Image scene = solid(320, 240, 77);
+  const render::Image window = solid(320, 240, 200);
+  viewer_->update(0.1);
+  viewer_->start_recording(frames.string() + "/");
+  viewer_->frame_drawn(nullptr, window);
+  // The next frame has its scene image: it catches up on the wall time since the start.
+  viewer_->update(0.1);
+  viewer_->frame_drawn(&scene, window);
+  viewer_->stop_recording();
+  EXPECT_EQ(viewer_->notices().back().text, "recorded 4 frames to " + frames.string() + "/");
+  for (const char* name : {"frame_000000.png", "frame_000003.png"}) {
+    ASSERT_TRUE(std::filesystem::exists(frames / name)) << name;
+    EXPECT_TRUE(render::read_png(frames / name).rgba == scene.rgba) << name;
+  }
 }
 
 TEST_F(ViewerApp, CtrlRRecordsAVideoOfTheWallClock) {

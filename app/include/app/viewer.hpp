@@ -68,9 +68,11 @@ class Viewer {
   render::DrawList frame();
   /// Whether the next frame's scene image (before the panels) is needed: while recording.
   bool wants_scene_image() const;
-  /// After a frame is drawn: `scene` is the frame without the panels (what a render writes;
-  /// only read while recording), `window` what the window shows (for screenshots).
-  void frame_drawn(const render::Image& scene, const render::Image& window);
+  /// After a frame is drawn: `scene` is the frame without the panels (what a render writes),
+  /// captured when wants_scene_image() said so before the frame, else null; `window` is what
+  /// the window shows (for screenshots). A recording takes frames only from scene images, so a
+  /// recording started by a panel button during the frame begins with the next one.
+  void frame_drawn(const render::Image* scene, const render::Image& window);
 
   // --- Recording and screenshots ---------------------------------------------------------------
   bool recording() const { return sink_ != nullptr; }
