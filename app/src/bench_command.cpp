@@ -1,5 +1,6 @@
 // `tumble bench`: options, validation, the output directory and the run of every case.
 #include "app/bench_command.hpp"
+#include "app/output_folder.hpp"
 
 #include "app/option_lists.hpp"
 
@@ -197,45 +198,8 @@ void plan(const BenchOptions& options, std::vector<BenchScene>& scenes,
   }
 }
 
-/// True when `dir` is empty or holds a previous bench output.
-bool replaceable(const std::filesystem::path& dir) {
-  if (std::filesystem::is_empty(dir)) return true;
-  std::ifstream report(dir / "report.md");
-  std::string first;
-  std::getline(report, first);
-  return first == "# tumble bench" && std::filesystem::exists(dir / "results.csv");
-}
-
-/// Creates DIR.tmp-PID after checking that DIR may be replaced. Throws InputError.
-std::filesystem::path start_output(const std::filesystem::path& dir) {
-  std::error_code error;
-  if (std::filesystem::exists(dir, error)) {
-    if (!std::filesystem::is_directory(dir)) {
-      throw InputError("-o: " + dir.string() + " exists and is not a directory");
-    }
-    if (!replaceable(dir)) {
-      throw InputError("-o: " + dir.string() +
-                       " exists and is neither empty nor a previous bench output");
-    }
-  }
-  std::filesystem::path tmp = dir;
-  tmp += ".tmp-" + std::to_string(::getpid());
-  std::filesystem::remove_all(tmp, error);
-  if (!std::filesystem::create_directories(tmp, error) || error) {
-    throw InputError("-o: cannot create " + tmp.string() + ": " + error.message());
-  }
-  return tmp;
-}
-
-/// Moves the finished DIR.tmp-PID into place, replacing an old DIR.
-void finish_output(const std::filesystem::path& tmp, const std::filesystem::path& dir) {
-  std::filesystem::path old = dir;
-  old += ".old-" + std::to_string(::getpid());
-  const bool had_old = std::filesystem::exists(dir);
-  if (had_old) std::filesystem::rename(dir, old);
-  std::filesystem::rename(tmp, dir);
-  if (had_old) std::filesystem::remove_all(old);
-}
+/// A bench output: report.md under its title, beside results.csv.
+const OutputFolderKind kBenchOutput{"bench", "report.md", "# tumble bench", "results.csv"};
 
 std::string case_line(const BenchScene& scene, const BenchCase& c, const CaseResult& r) {
   std::string line = scene.label + " " + c.integrator + " " +
@@ -254,7 +218,7 @@ int bench(const BenchOptions& options, std::ostream& out, std::ostream& err) {
       static_cast<int>(parse_count(options.repeat.value_or("3"), "--repeat", 1));
   const auto jobs = static_cast<std::size_t>(parse_count(options.jobs.value_or("1"), "--jobs", 1));
   if (!gnuplot_available()) throw InputError("gnuplot is not installed (needed for the plots)");
-  const std::filesystem::path tmp = start_output(options.output);
+  const std::filesystem::path tmp = start_output_folder(options.output, kBenchOutput);
 
   try {
     // References, once per scene.
@@ -290,7 +254,7 @@ int bench(const BenchOptions& options, std::ostream& out, std::ostream& err) {
     write_results_csv(outcome, tmp / "results.csv");
     write_plots(outcome, tmp);
     write_report(outcome, tmp / "report.md");
-    finish_output(tmp, options.output);
+    finish_output_folder(tmp, options.output);
   } catch (...) {
     std::error_code ignored;
     std::filesystem::remove_all(tmp, ignored);

@@ -10,8 +10,7 @@
 #include "app/stability_command.hpp"
 
 #include "app/option_lists.hpp"
-
-#include <unistd.h>
+#include "app/output_folder.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -411,19 +410,9 @@ void write_file(const fs::path& file, const std::string& text) {
   if (!out) throw InputError("cannot write " + file.string());
 }
 
-/// Moves the finished temporary folder into place, replacing an earlier result.
-void publish(const fs::path& temporary, const fs::path& output) {
-  std::error_code error;
-  fs::path old;
-  if (fs::exists(output)) {
-    old = output.string() + ".old-" + std::to_string(::getpid());
-    fs::rename(output, old, error);
-    if (error) throw InputError("-o " + output.string() + ": cannot replace it: " + error.message());
-  }
-  fs::rename(temporary, output, error);
-  if (error) throw InputError("-o " + output.string() + ": cannot rename into place: " + error.message());
-  if (!old.empty()) fs::remove_all(old, error);
-}
+/// A stability output: stability.md under its title (and the suite), beside stability.csv.
+const OutputFolderKind kStabilityOutput{"stability", "stability.md", "# tumble stability",
+                                        "stability.csv"};
 
 int list_suites(std::ostream& out) {
   for (const SuiteListing& suite : stability_suite_listing()) {
@@ -439,16 +428,7 @@ int stability(const StabilityOptions& options, std::ostream& out, std::ostream& 
   std::string suite;
   const std::vector<StabilityCase> cases = gather_cases(options, suite);
   const fs::path output = *options.output;
-  if (fs::exists(output) && !fs::is_directory(output)) {
-    throw InputError("-o " + output.string() + ": exists and is not a directory");
-  }
-  const fs::path temporary = output.string() + ".tmp-" + std::to_string(::getpid());
-  std::error_code error;
-  fs::remove_all(temporary, error);
-  if (!fs::create_directory(temporary, error) || error) {
-    throw InputError("-o " + output.string() + ": cannot create " + temporary.string() + ": " +
-                     (error ? error.message() : "it exists"));
-  }
+  const fs::path temporary = start_output_folder(output, kStabilityOutput);
   try {
     // The sweep, case by case.
     std::vector<RunRecord> runs;
@@ -483,7 +463,7 @@ int stability(const StabilityOptions& options, std::ostream& out, std::ostream& 
       panels.push_back(panel);
     }
     draw_heat_map(panels, temporary / "stability.png", temporary / "stability.svg");
-    publish(temporary, output);
+    finish_output_folder(temporary, output);
 
     // Summary on stdout.
     std::size_t counts[6] = {};
@@ -495,7 +475,8 @@ int stability(const StabilityOptions& options, std::ostream& out, std::ostream& 
     out << "\n  wrote " << (output / "stability.csv").string() << ", stability.md, stability.png, "
         << "stability.svg\n";
   } catch (...) {
-    fs::remove_all(temporary, error);
+    std::error_code ignored;
+    fs::remove_all(temporary, ignored);
     throw;
   }
   return 0;

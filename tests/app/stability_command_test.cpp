@@ -239,6 +239,45 @@ TEST(StabilityCommand, UserSceneAppearsAsACase) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(StabilityCommand, ReplacesOnlyAnEmptyFolderOrAnEarlierOutput) {
+  const auto dir = fresh_directory("stability_output");
+  const auto scene = dir / "wobbly.json";
+  std::ofstream(scene) << R"({"name": "wobbly", "duration": 1, "dt": 0.01,
+    "bodies": [{"inertia": {"principal": [1, 2, 3]}, "mass": 1,
+                "angular_velocity": [0.4, 0.8, 0.6]}]})";
+  const auto stability = [&](const std::filesystem::path& out) {
+    return run_command(tumble_executable() + " stability --integrators rk4 --dts 0.1 '" +
+                       scene.string() + "' -o '" + out.string() + "'");
+  };
+  // A new folder, then the same one again: an earlier output is replaced.
+  ASSERT_EQ(stability(dir / "out").status, 0);
+  const auto again = stability(dir / "out");
+  EXPECT_EQ(again.status, 0) << again.err;
+  EXPECT_EQ(read_csv(dir / "out" / "stability.csv").size(), 1u);
+  // An empty folder is used.
+  std::filesystem::create_directory(dir / "empty");
+  EXPECT_EQ(stability(dir / "empty").status, 0);
+  EXPECT_TRUE(std::filesystem::exists(dir / "empty" / "stability.md"));
+  // A folder holding anything else is left alone.
+  std::filesystem::create_directory(dir / "mine");
+  std::ofstream(dir / "mine" / "notes.txt") << "keep";
+  const auto refused = stability(dir / "mine");
+  EXPECT_EQ(refused.status, 1);
+  EXPECT_THAT(refused.err, HasSubstr("-o: " + (dir / "mine").string() +
+                                     " exists and is neither empty nor a previous stability output"));
+  EXPECT_EQ(read_text(dir / "mine" / "notes.txt"), "keep");
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir / "mine"),
+                          std::filesystem::directory_iterator()),
+            1);
+  // No temporaries left behind.
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    EXPECT_EQ(name.find(".tmp"), std::string::npos) << name;
+    EXPECT_EQ(name.find(".old"), std::string::npos) << name;
+  }
+  std::filesystem::remove_all(dir);
+}
+
 TEST(StabilityCommand, ListSuitesNamesTheSuites) {
   const auto result = run_command(tumble_executable() + " stability --list-suites");
   EXPECT_EQ(result.status, 0);
@@ -266,7 +305,8 @@ TEST(StabilityCommand, InputErrorsAreOneLineAndExitOne) {
                      "--dts: expected a positive number, got 'abc'");
   expect_input_error("--suite quick --dts=-1 -o " + out, "--dts");
   expect_input_error("--suite quick --cases needle,nope -o " + out, "--cases: no case 'nope'");
-  expect_input_error("--suite quick -o /nonexistent/folder/out", "-o /nonexistent/folder/out");
+  expect_input_error("--suite quick -o /nonexistent/folder/out",
+                     "-o: cannot create /nonexistent/folder/out");
   expect_input_error("--suite quick", "-o DIR is required");
   EXPECT_FALSE(std::filesystem::exists(out));
 }
