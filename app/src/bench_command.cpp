@@ -305,9 +305,7 @@ CLI::App& add_bench_command(CLI::App& cli, BenchOptions& options) {
 int run_bench(const BenchOptions& options, std::ostream& out, std::ostream& err) {
   try {
     return bench(options, out, err);
-  } catch (const InputError& error) {
-    err << "tumble bench: error: " << error.what() << "\n";
-  } catch (const std::exception& error) {  // filesystem, gnuplot
+  } catch (const std::exception& error) {  // input, filesystem, gnuplot
     err << "tumble bench: error: " << error.what() << "\n";
   }
   return 1;

@@ -547,7 +547,7 @@ int run_stability(const StabilityOptions& options, std::ostream& out, std::ostre
   try {
     if (options.list_suites) return list_suites(out);
     return stability(options, out, err);
-  } catch (const InputError& error) {
+  } catch (const std::exception& error) {  // input, filesystem, gnuplot
     err << "tumble stability: error: " << error.what() << "\n";
     return kExitInputError;
   }
