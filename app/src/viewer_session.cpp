@@ -195,12 +195,13 @@ void Session::rebuild(const std::vector<RunSpec>& specs) {
   // placement follow what is drawn.
   builder_settings.width = renderer_.width();
   builder_settings.height = renderer_.height();
-  builder_settings.show.herpolhode = true;  // cheap history, so the toggles work at any time
+  // Everything the toggles can show is prepared, so that they work at any time without a
+  // rebuild: the histories (cheap), and the inertia ellipsoid, whose mesh is uploaded and whose
+  // scale the w arrow takes (its tip on the ellipsoid) whether or not it is shown.
+  builder_settings.show.herpolhode = true;
   builder_settings.show.polhode = true;
-  builder_settings.show.overlay = true;
-  builder_settings.show.inertia_ellipsoid = show_.inertia_ellipsoid;
+  builder_settings.show.inertia_ellipsoid = true;
   builder_settings.show.trails = default_trails_;
-  built_with_ellipsoid_ = show_.inertia_ellipsoid;
   for (std::size_t k = 0; k < runs.size(); ++k) {
     compiled_.settings = settings[k];  // the builder's overlay names the run's integrator and dt
     runs[k].builder =
@@ -352,10 +353,6 @@ render::DrawList Session::frame(const render::Camera& camera) {
     empty.camera = camera;
     return empty;
   }
-  // The ellipsoid mesh exists only when the builders were made with it.
-  if (show_.inertia_ellipsoid != built_with_ellipsoid_) {
-    rebuild_for_ellipsoid();
-  }
   ShowSettings show = show_;
   show.trails = show_trails_ ? default_trails_ : std::vector<TrailSettings>{};
   render::DrawList list = runs_.front().builder->build(*runs_.front().simulation, show);
@@ -389,21 +386,6 @@ render::DrawList Session::frame(const render::Camera& camera) {
   }
   list.panels.push_back(std::move(legend));
   return list;
-}
-
-void Session::rebuild_for_ellipsoid() {
-  // Keep the runs' progress: rebuilding restarts them, so step them back to where they were.
-  // The live plots and the panels' idea of the run stay as they were.
-  const double now = time();
-  const bool was_paused = paused_;
-  History history = std::move(history_);
-  const std::size_t generation = generation_;
-  rebuild(specs());
-  step_runs_to(now, std::chrono::steady_clock::time_point::max());
-  target_time_ = time();
-  paused_ = was_paused;
-  history_ = std::move(history);
-  generation_ = generation;
 }
 
 void Session::set_plotted_body(std::size_t body) {

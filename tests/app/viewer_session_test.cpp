@@ -627,16 +627,30 @@ TEST_F(ViewerSession, EllipsoidToggleMidRunKeepsTheSimulatedTime) {
   expect_same_state(session->simulation().states()[0], state);
 }
 
-// Regression: switching the ellipsoid on rebuilds the runs, which once cleared the live plots
-// and bumped generation() as if the runs had restarted.
-TEST_F(ViewerSession, EllipsoidToggleKeepsThePlots) {
+// Regression: switching the ellipsoid on once rebuilt the runs, which cleared the live plots,
+// bumped generation() as if the runs had restarted, and left the drawn herpolhode and polhode
+// with two points (the replay observed the runs only at its end).
+TEST_F(ViewerSession, EllipsoidToggleKeepsThePlotsAndTheDrawnPaths) {
   auto session = open(brick_scene());
+  session->show().herpolhode = true;
+  session->show().polhode = true;
+  session->show_trails() = false;
   for (int i = 0; i < 10; ++i) session->advance(0.05, kNoBudget);
   const std::vector<float> times = session->history().time;
   ASSERT_EQ(times.size(), 11u);
   const std::size_t generation = session->generation();
+  const auto path_points = [&] {
+    std::vector<std::size_t> points;
+    for (const render::Polyline& line : session->frame(render::Camera{}).polylines) {
+      points.push_back(line.points.size());
+    }
+    return points;
+  };
+  const std::vector<std::size_t> before = path_points();
+  ASSERT_EQ(before.size(), 2u);  // herpolhode and polhode
+  EXPECT_GE(before[0], 11u);
   session->show().inertia_ellipsoid = true;
-  session->frame(render::Camera{});
+  EXPECT_EQ(path_points(), before);
   EXPECT_EQ(session->history().time, times);
   EXPECT_EQ(session->generation(), generation);
 }

@@ -133,9 +133,8 @@ class Session {
   /// The camera a render of the scene starts with, and the radius of the motion around it.
   const render::Camera& scene_camera() const { return scene_camera_; }
   double reach() const;
-  /// The draw list of the current state seen by `camera`. When show().inertia_ellipsoid has
-  /// changed, the frame builders are remade first (the ellipsoid's mesh and the arrows' scale
-  /// are fixed at construction), the runs stepped back to the same time, the plots kept.
+  /// The draw list of the current state seen by `camera`, showing what show() says. The w
+  /// arrow always has the scale that puts its tip on the inertia ellipsoid, shown or not.
   render::DrawList frame(const render::Camera& camera);
 
   /// Body whose w the live plots show.
@@ -167,7 +166,6 @@ class Session {
   /// Replaces the runs with new ones from the initial states, clock and history restarted.
   /// Throws InputError, changing nothing, when an integrator cannot take a body.
   void rebuild(const std::vector<RunSpec>& specs);
-  void rebuild_for_ellipsoid();
   void record_history();
   void step_runs_to(double time, std::chrono::steady_clock::time_point deadline);
 
@@ -180,7 +178,6 @@ class Session {
   std::vector<Run> runs_;
   ShowSettings show_;
   bool show_trails_ = false;
-  bool built_with_ellipsoid_ = false;
   render::Camera scene_camera_;
 
   bool paused_ = false;
