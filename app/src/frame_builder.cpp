@@ -69,9 +69,16 @@ struct BodyLook {
   std::optional<render::MeshId> ellipsoid;
   Rgba colour;
   double radius = 1.0;          ///< bounding radius of the drawn geometry about the COM, m
-  double omega_scale = 0.0;     ///< m of arrow per rad/s
+  double omega_scale = 0.0;  ///< m of arrow per rad/s
+  /// The w scale that puts the arrow's tip on the drawn inertia ellipsoid (used while it is
+  /// shown; the plain scale when the body does not turn).
+  double ellipsoid_omega_scale = 0.0;
   double momentum_scale = 0.0;  ///< m of arrow per kg m^2/s
   Eigen::Vector3d ellipsoid_radii = Eigen::Vector3d::Zero();  ///< principal frame, m
+
+  double omega_scale_for(const ShowSettings& show) const {
+    return show.inertia_ellipsoid ? ellipsoid_omega_scale : omega_scale;
+  }
 };
 
 /// The point the body turns about: its pivot, or its centre of mass when free.
@@ -121,7 +128,6 @@ std::string format(const char* pattern, double a, double b = 0.0) {
 struct FrameBuilder::Impl {
   RenderSettings settings;
   std::string title;
-  std::string integrator_line;
   std::vector<BodyLook> looks;
   detail::CameraRig rig;
   double ground_height = 0.0;
@@ -133,8 +139,8 @@ struct FrameBuilder::Impl {
   std::vector<double> times;
   std::vector<float> energy_drift;
   std::vector<float> momentum_drift;
-  std::vector<std::vector<Eigen::Vector3d>> herpolhode;  ///< per body: s w (world, from centre)
-  std::vector<std::vector<Eigen::Vector3d>> polhode;     ///< per body: s w (principal frame)
+  std::vector<std::vector<Eigen::Vector3d>> herpolhode;  ///< per body: w (world)
+  std::vector<std::vector<Eigen::Vector3d>> polhode;     ///< per body: w (principal frame)
   std::vector<std::vector<Eigen::Vector3d>> trails;      ///< per trail: world points
 
   void frame_the_run(const CompiledScene& scene);
@@ -178,8 +184,6 @@ FrameBuilder::FrameBuilder(const SceneDescription& description, const CompiledSc
   Impl& impl = *impl_;
   impl.settings = settings;
   impl.title = description.name;
-  impl.integrator_line = "integrator " + engine::integrator_info(scene.settings.integrator).name +
-                         format(", dt = %g s", scene.settings.dt);
 
   // Meshes, colours and arrow scales, fixed for the whole run.
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
@@ -199,16 +203,15 @@ FrameBuilder::FrameBuilder(const SceneDescription& description, const CompiledSc
     look.omega_scale = kOmegaArrowFraction * size / (omega_norm > 0.0 ? omega_norm : 1.0);
     look.momentum_scale =
         kMomentumArrowFraction * size / (momentum_norm > 0.0 ? momentum_norm : 1.0);
-    // Poinsot's ellipsoid through the tip of the w arrow: semi-axes s sqrt(2T / I_i). When it
+    // Poinsot's ellipsoid through the tip of the w arrow: semi-axes s sqrt(2T / I_i). While it
     // is shown, the w scale s makes its longest semi-axis a little longer than the body.
     const double twice_kinetic = omega.dot(state.angular_momentum);
+    look.ellipsoid_omega_scale = look.omega_scale;
     if (twice_kinetic > 0.0) {
-      if (settings.show.inertia_ellipsoid) {
-        look.omega_scale =
-            kEllipsoidFraction * look.radius * std::sqrt(body.moments.minCoeff() / twice_kinetic);
-      }
-      look.ellipsoid_radii =
-          look.omega_scale * std::sqrt(twice_kinetic) * body.moments.cwiseSqrt().cwiseInverse();
+      look.ellipsoid_omega_scale =
+          kEllipsoidFraction * look.radius * std::sqrt(body.moments.minCoeff() / twice_kinetic);
+      look.ellipsoid_radii = look.ellipsoid_omega_scale * std::sqrt(twice_kinetic) *
+                             body.moments.cwiseSqrt().cwiseInverse();
     } else {
       look.ellipsoid_radii = kEllipsoidFraction * look.radius *
                              (body.moments.minCoeff() * body.moments.cwiseInverse()).cwiseSqrt();
@@ -253,7 +256,7 @@ void FrameBuilder::Impl::frame_the_run(const CompiledScene& scene) {
                                  ? std::max(omega_norm, detail::largest_free_omega(body, state))
                                  : 1.25 * omega_norm;
     if (show.angular_velocity || show.herpolhode || show.polhode) {
-      arrows = std::max(arrows, look.omega_scale * omega_max);
+      arrows = std::max(arrows, look.omega_scale_for(show) * omega_max);
     }
     if (show.angular_momentum) {
       arrows = std::max(arrows, look.momentum_scale * state.angular_momentum.norm() *
@@ -295,13 +298,14 @@ void FrameBuilder::observe(const engine::Simulation& simulation) {
   impl.energy_drift.push_back(static_cast<float>(drift.energy));
   impl.momentum_drift.push_back(static_cast<float>(drift.momentum));
 
-  // The tip of the scaled w: in the world from the centre (herpolhode), in the body (polhode).
+  // w, unscaled (build() scales it as the w arrow is): in the world (herpolhode), in the body
+  // (polhode).
   for (std::size_t i = 0; i < simulation.bodies().size(); ++i) {
     const engine::BodyModel& body = simulation.bodies()[i];
     const engine::BodyState& state = simulation.states()[i];
-    const Eigen::Vector3d tip = impl.looks[i].omega_scale * engine::angular_velocity(body, state);
-    if (impl.settings.show.herpolhode) impl.herpolhode[i].push_back(tip);
-    if (impl.settings.show.polhode) impl.polhode[i].push_back(state.orientation.inverse() * tip);
+    const Eigen::Vector3d omega = engine::angular_velocity(body, state);
+    if (impl.settings.show.herpolhode) impl.herpolhode[i].push_back(omega);
+    if (impl.settings.show.polhode) impl.polhode[i].push_back(state.orientation.inverse() * omega);
   }
 
   // Trails: world points fixed in the bodies.
@@ -329,8 +333,9 @@ void FrameBuilder::Impl::add_body_items(const engine::BodyModel& body,
   }
 
   // w and L from the rotation centre, at their fixed scales.
+  const double omega_scale = look.omega_scale_for(show);
   const Eigen::Vector3d omega = engine::angular_velocity(body, state);
-  const Eigen::Vector3d omega_tip = centre + look.omega_scale * omega;
+  const Eigen::Vector3d omega_tip = centre + omega_scale * omega;
   const Eigen::Vector3d momentum_tip = centre + look.momentum_scale * state.angular_momentum;
   if (show.angular_velocity && omega.squaredNorm() > 0.0) {
     list.arrows.push_back({centre.cast<float>(), omega_tip.cast<float>(), kOmegaColour, thickness});
@@ -371,14 +376,15 @@ void FrameBuilder::Impl::add_body_items(const engine::BodyModel& body,
   if (show.herpolhode && end > 1 && herpolhode[index].size() >= end) {
     render::Polyline line{{}, kHerpolhodeColour, 2.5f};
     for (std::size_t k = 0; k < end; ++k) {
-      line.points.push_back((centre + herpolhode[index][k]).cast<float>());
+      line.points.push_back((centre + omega_scale * herpolhode[index][k]).cast<float>());
     }
     list.polylines.push_back(std::move(line));
   }
   if (show.polhode && end > 1 && polhode[index].size() >= end) {
     render::Polyline line{{}, kPolhodeColour, 2.5f};
     for (std::size_t k = 0; k < end; ++k) {
-      line.points.push_back((centre + state.orientation * polhode[index][k]).cast<float>());
+      line.points.push_back(
+          (centre + omega_scale * (state.orientation * polhode[index][k])).cast<float>());
     }
     list.polylines.push_back(std::move(line));
   }
@@ -400,7 +406,9 @@ void FrameBuilder::Impl::add_overlay(const engine::Simulation& simulation, std::
   // Wide enough for the title (about 7 px per character of ImGui's default font).
   panel.width_px = std::clamp(7.2f * static_cast<float>(title.size()) + 24.0f, 320.0f,
                               std::max(320.0f, 0.45f * static_cast<float>(settings.width)));
-  panel.lines.push_back(integrator_line);
+  const engine::SimulationSettings& run = simulation.settings();
+  panel.lines.push_back("integrator " + engine::integrator_info(run.integrator).name +
+                        format(", dt = %g s", run.dt));
   panel.lines.push_back(
       format("t = %.3f s of %g s", simulation.time(), simulation.settings().duration));
   if (show.angular_velocity) panel.lines.push_back("yellow arrow: angular velocity w");

@@ -142,6 +142,7 @@ std::optional<std::string> Session::open_compiled(const SceneDescription& scene,
   const std::vector<RunSpec> old_runs = specs();
   const ShowSettings old_show = show_;
   const bool old_show_trails = show_trails_;
+  const std::size_t old_plotted_body = std::exchange(plotted_body_, 0);
   show_ = settings.show;
   show_trails_ = !settings.show.trails.empty();
   default_trails_ = settings.show.trails.empty() ? default_trails(compiled_) : settings.show.trails;
@@ -155,10 +156,10 @@ std::optional<std::string> Session::open_compiled(const SceneDescription& scene,
     default_trails_ = old_trails;
     show_ = old_show;
     show_trails_ = old_show_trails;
+    plotted_body_ = old_plotted_body;
     if (runs_.empty() && !old_runs.empty()) rebuild(old_runs);
     return scene.file.string() + ": " + error.what();
   }
-  plotted_body_ = 0;
   return std::nullopt;
 }
 
@@ -172,10 +173,8 @@ void Session::rebuild(const std::vector<RunSpec>& specs) {
   // Simulations first: the only part that can refuse (an integrator that cannot take a body),
   // and nothing has changed yet when it does.
   std::vector<Run> runs;
-  const engine::SimulationSettings scene_settings = compiled_.settings;
-  std::vector<engine::SimulationSettings> settings;
   for (const RunSpec& spec : specs) {
-    engine::SimulationSettings run_settings = scene_settings;
+    engine::SimulationSettings run_settings = compiled_.settings;
     run_settings.integrator = engine::integrator_from_name(spec.integrator).value();
     run_settings.dt = spec.dt;
     Run run;
@@ -184,7 +183,6 @@ void Session::rebuild(const std::vector<RunSpec>& specs) {
     run.simulation =
         std::make_unique<engine::Simulation>(compiled_.bodies, compiled_.initial, run_settings);
     runs.push_back(std::move(run));
-    settings.push_back(run_settings);
   }
 
   // Then the drawing: the old runs' meshes go before the new ones are uploaded.
@@ -196,19 +194,21 @@ void Session::rebuild(const std::vector<RunSpec>& specs) {
   builder_settings.width = renderer_.width();
   builder_settings.height = renderer_.height();
   // Everything the toggles can show is prepared, so that they work at any time without a
-  // rebuild: the histories (cheap), and the inertia ellipsoid, whose mesh is uploaded and whose
-  // scale the w arrow takes (its tip on the ellipsoid) whether or not it is shown.
+  // rebuild: the paths' histories (cheap) and the inertia ellipsoid's mesh. (The paths are
+  // kept unscaled, so they follow the w arrow's scale, which the ellipsoid changes.)
   builder_settings.show.herpolhode = true;
   builder_settings.show.polhode = true;
   builder_settings.show.inertia_ellipsoid = true;
   builder_settings.show.trails = default_trails_;
+  // Runs beside the first draw only their bodies: they keep no paths.
+  RenderSettings beside_settings = builder_settings;
+  beside_settings.show.herpolhode = beside_settings.show.polhode = false;
+  beside_settings.show.trails.clear();
   for (std::size_t k = 0; k < runs.size(); ++k) {
-    compiled_.settings = settings[k];  // the builder's overlay names the run's integrator and dt
-    runs[k].builder =
-        std::make_unique<FrameBuilder>(scene_, compiled_, builder_settings, renderer_);
+    runs[k].builder = std::make_unique<FrameBuilder>(
+        scene_, compiled_, k == 0 ? builder_settings : beside_settings, renderer_);
     runs[k].builder->observe(*runs[k].simulation);
   }
-  compiled_.settings = scene_settings;
   runs_ = std::move(runs);
   if (!runs_.empty())
     scene_camera_ = runs_.front().builder->build(*runs_.front().simulation).camera;
@@ -367,6 +367,7 @@ render::DrawList Session::frame(const render::Camera& camera) {
   legend.lines.push_back("solid: " + runs_.front().integrator +
                          ", dt = " + number("%g", runs_.front().dt) + " s");
   ShowSettings bodies_only;
+  bodies_only.bodies = show_.bodies;
   bodies_only.angular_velocity = false;
   bodies_only.angular_momentum = false;
   bodies_only.overlay = false;

@@ -133,8 +133,8 @@ class Session {
   /// The camera a render of the scene starts with, and the radius of the motion around it.
   const render::Camera& scene_camera() const { return scene_camera_; }
   double reach() const;
-  /// The draw list of the current state seen by `camera`, showing what show() says. The w
-  /// arrow always has the scale that puts its tip on the inertia ellipsoid, shown or not.
+  /// The draw list of the current state seen by `camera`, showing what show() says (every
+  /// toggle at once: the builders are made with everything prepared).
   render::DrawList frame(const render::Camera& camera);
 
   /// Body whose w the live plots show.
