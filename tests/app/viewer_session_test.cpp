@@ -357,6 +357,16 @@ TEST_F(ViewerSession, BesideAddsTranslucentRunsAndALegend) {
   const render::DrawList four = session->frame(camera);
   EXPECT_EQ(four.meshes.size(), 4u);
   EXPECT_EQ(four.meshes[3].colour.b, beside_colour(3).colour.b);
+  // Switching the bodies off hides every run's, and the overlay names the first run's
+  // integrator and dt.
+  session->show().bodies = false;
+  const render::DrawList hidden = session->frame(camera);
+  EXPECT_TRUE(hidden.meshes.empty());
+  const auto overlay = std::find_if(hidden.panels.begin(), hidden.panels.end(),
+                                    [](const auto& panel) { return panel.title != "runs"; });
+  ASSERT_NE(overlay, hidden.panels.end());
+  EXPECT_THAT(overlay->lines, ::testing::Contains("integrator rk4, dt = 0.003 s"));
+  session->show().bodies = true;
 
   // Without `beside`, the runs are replaced by one.
   session->advance(0.1, kNoBudget);
