@@ -36,8 +36,8 @@ Viewer::~Viewer() {
   if (sink_) stop_recording();
 }
 
-bool Viewer::open(const std::filesystem::path& file) {
-  if (auto error = session_.open(file)) {
+bool Viewer::open(const std::filesystem::path& file, const RunChoice& choice) {
+  if (auto error = session_.open(file, choice)) {
     notify(*error, true);
     return false;
   }

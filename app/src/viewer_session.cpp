@@ -93,24 +93,27 @@ Session::~Session() {
   renderer_.release_meshes(mesh_mark_);
 }
 
-std::optional<std::string> Session::open(const std::filesystem::path& file) {
+std::optional<std::string> Session::open(const std::filesystem::path& file,
+                                         const RunChoice& choice) {
   try {
     std::string extension = file.extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    if (extension == ".json") return open_compiled(load_scene(file), false);
-    if (!std::filesystem::exists(file)) return file.string() + ": no such file";
+    const bool is_scene = extension == ".json";
+    if (!is_scene && !std::filesystem::exists(file)) return file.string() + ": no such file";
     // A mesh opened on its own spins about its intermediate axis, ready to flip.
-    return open_compiled(mesh_scene(file), true);
+    SceneDescription scene = is_scene ? load_scene(file) : mesh_scene(file);
+    if (choice.integrator) override_integrator(scene, *choice.integrator);
+    if (choice.dt) {
+      scene.dt = positive_option(*choice.dt, "--dt");
+      if (auto problem = step_problem(scene.dt, scene.duration)) return "--dt: " + *problem;
+    }
+    return open_compiled(scene, !is_scene);
   } catch (const InputError& error) {
     return error.what();
   } catch (const std::exception& error) {
     return file.string() + ": " + error.what();
   }
-}
-
-std::optional<std::string> Session::open_scene(const SceneDescription& scene) {
-  return open_compiled(scene, false);
 }
 
 std::optional<std::string> Session::open_compiled(const SceneDescription& scene,

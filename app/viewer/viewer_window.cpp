@@ -199,9 +199,9 @@ int run_view(const ViewOptions& options, std::ostream& out, std::ostream& err) {
     if (options.dt) positive_option(*options.dt, "--dt");
     if (options.time_scale) positive_option(*options.time_scale, "--time-scale");
     if (options.exit_after) positive_option(*options.exit_after, "--exit-after");
-    if (options.integrator && !engine::integrator_from_name(*options.integrator)) {
-      throw engine::InputError("--integrator: unknown \"" + *options.integrator +
-                               "\" (expected one of " + integrator_names() + ")");
+    if (options.integrator) {
+      SceneDescription unused;
+      override_integrator(unused, *options.integrator);  // checks the name
     }
     std::error_code error;
     if (!std::filesystem::is_directory(options.output_dir, error)) {
@@ -258,18 +258,11 @@ int run_view(const ViewOptions& options, std::ostream& out, std::ostream& err) {
 
   const std::optional<std::filesystem::path> file =
       options.file ? options.file : default_view_scene();
-  if (file && viewer.open(*file) && options.integrator) {
-    const double dt = options.dt.value_or(viewer.session().dt());
-    if (auto error = viewer.session().set_integrator(*options.integrator, dt, false)) {
-      viewer.notify(*error, true);
-    }
-  } else if (file && options.dt && !viewer.session().empty()) {
-    if (auto error =
-            viewer.session().set_integrator(viewer.session().integrator(), *options.dt, false)) {
-      viewer.notify(*error, true);
-    }
+  if (file) {
+    viewer.open(*file, {options.integrator, options.dt});
+  } else {
+    viewer.notify("no scene given and the demo was not found: open a file", true);
   }
-  if (!file) viewer.notify("no scene given and the demo was not found: open a file", true);
   if (options.time_scale) viewer.session().set_time_scale(*options.time_scale);
   viewer.session().set_paused(options.paused);
 

@@ -319,7 +319,7 @@ TEST_F(ViewCommand, BadOptionsFailBeforeAnyWindowOpens) {
   EXPECT_THAT(bad_dir.err, HasSubstr("--output-dir"));
   const auto bad_integrator = run_command(exe + "--integrator leapfrog");
   EXPECT_EQ(bad_integrator.status, 1);
-  EXPECT_THAT(bad_integrator.err, HasSubstr("--integrator: unknown \"leapfrog\""));
+  EXPECT_THAT(bad_integrator.err, HasSubstr("--integrator: unknown integrator \"leapfrog\""));
 }
 
 TEST(ViewCommandBuild, WithoutTheViewerItSaysSo) {

@@ -101,6 +101,26 @@ TEST_F(ViewerSession, OpensASceneAtTimeZeroWithItsIntegrator) {
   EXPECT_EQ(session->history().time.size(), 1u);
 }
 
+TEST_F(ViewerSession, OpensWithTheCommandLinesIntegratorAndStep) {
+  Session session(*renderer_);
+  const auto file = write_scene(brick_scene(), "scene.json");
+  EXPECT_FALSE(session.open(file, {"splitting", 0.002}));
+  EXPECT_EQ(session.run_count(), 1u);
+  EXPECT_EQ(session.integrator(), "splitting");
+  EXPECT_EQ(session.dt(), 0.002);
+  // Only the step: the scene's integrator.
+  EXPECT_FALSE(session.open(file, {std::nullopt, 0.005}));
+  EXPECT_EQ(session.integrator(), "rk4");
+  EXPECT_EQ(session.dt(), 0.005);
+  // A bad choice is refused naming the option, and what was open stays.
+  EXPECT_THAT(session.open(file, {"leapfrog", std::nullopt}).value_or(""),
+              HasSubstr("--integrator: unknown integrator \"leapfrog\""));
+  EXPECT_THAT(session.open(file, {std::nullopt, -1.0}).value_or(""),
+              HasSubstr("--dt: expected a positive finite number"));
+  EXPECT_EQ(session.integrator(), "rk4");
+  EXPECT_EQ(session.dt(), 0.005);
+}
+
 TEST_F(ViewerSession, EmptySessionIgnoresTheClock) {
   Session session(*renderer_);
   EXPECT_TRUE(session.empty());

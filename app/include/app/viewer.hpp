@@ -49,9 +49,9 @@ class Viewer {
   const Session& session() const { return session_; }
   OrbitCamera& camera() { return camera_; }
 
-  /// Opens a scene or a mesh; on failure posts the error and keeps what was open. Returns
-  /// whether it opened.
-  bool open(const std::filesystem::path& file);
+  /// Opens a scene or a mesh (with the integrator and dt of `choice` where given); on failure
+  /// posts the error and keeps what was open. Returns whether it opened.
+  bool open(const std::filesystem::path& file, const RunChoice& choice = {});
   /// The file open now (empty before the first open).
   const std::filesystem::path& file() const { return file_; }
 
@@ -98,7 +98,6 @@ class Viewer {
   void notify(const std::string& text, bool error = false);
   const std::vector<Notice>& notices() const { return notices_; }
   void dismiss_notice(std::size_t index);
-  double clock() const { return clock_; }
 
  private:
   std::filesystem::path fresh_name(const std::string& extension) const;

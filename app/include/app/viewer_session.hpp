@@ -58,6 +58,12 @@ struct History {
   std::vector<float> omega[3];        ///< w of the selected body in its body frame, rad/s
 };
 
+/// An integrator and step to open a scene with instead of its own.
+struct RunChoice {
+  std::optional<std::string> integrator;
+  std::optional<double> dt;
+};
+
 class Session {
  public:
   /// Samples kept in History: when it passes 5/4 of this, the oldest are dropped down to it.
@@ -70,10 +76,10 @@ class Session {
   Session& operator=(const Session&) = delete;
 
   /// Opens a scene (.json) or a mesh (any other file), paused or not as before, at t = 0 with
-  /// the scene's integrator. On failure returns the one-line message and keeps what was open.
-  std::optional<std::string> open(const std::filesystem::path& file);
-  /// Opens an already parsed scene (same contract).
-  std::optional<std::string> open_scene(const SceneDescription& scene);
+  /// the scene's integrator and dt, or those of `choice` (the command line's --integrator and
+  /// --dt). On failure returns the one-line message and keeps what was open.
+  std::optional<std::string> open(const std::filesystem::path& file,
+                                  const RunChoice& choice = {});
 
   bool empty() const { return runs_.empty(); }
   /// Changes each time the runs restart (open, reset, integrator or initial state changed), so
@@ -81,7 +87,6 @@ class Session {
   std::size_t generation() const { return generation_; }
   const SceneDescription& scene() const { return scene_; }
   const CompiledScene& compiled() const { return compiled_; }
-  const RenderSettings& render_settings() const { return render_settings_; }
 
   // --- Clock ---------------------------------------------------------------------------------
   bool paused() const { return paused_; }
