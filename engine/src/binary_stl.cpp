@@ -109,13 +109,10 @@ class FileBytes {
 
 }  // namespace
 
-std::optional<BinaryStl> read_binary_stl(const std::filesystem::path& file) {
+std::optional<BinaryStl> read_binary_stl(const std::filesystem::path& file, std::uintmax_t size) {
   // Claim only files named *.stl whose size is that of a binary STL (assimp chooses its reader
   // by the name first, so any other name is left to it).
-  if (!has_stl_extension(file)) return std::nullopt;
-  std::error_code error;
-  const std::uintmax_t size = std::filesystem::file_size(file, error);
-  if (error || size < kHeaderBytes) return std::nullopt;
+  if (!has_stl_extension(file) || size < kHeaderBytes) return std::nullopt;
   const std::unique_ptr<std::FILE, CloseFile> stream(std::fopen(file.string().c_str(), "rb"));
   if (!stream) fail(file, "cannot be opened for reading");
   unsigned char header[kHeaderBytes];

@@ -15,6 +15,7 @@
 // also for headers that begin with "solid" like an ASCII file (the tests check both).
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 
@@ -33,6 +34,7 @@ struct BinaryStl {
 /// positions are welded (engine/vertex_welding.hpp), in order of first appearance. Coordinates
 /// are not checked here: non-finite ones are import_mesh's to reject. Throws InputError naming
 /// the file when it cannot be read or holds more triangles than 32-bit indices can weld.
-std::optional<BinaryStl> read_binary_stl(const std::filesystem::path& file);
+/// `size` is the file's size in bytes, which the caller has already asked for.
+std::optional<BinaryStl> read_binary_stl(const std::filesystem::path& file, std::uintmax_t size);
 
 }  // namespace tumble::engine::detail

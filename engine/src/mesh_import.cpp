@@ -18,9 +18,9 @@
 #include <span>
 #include <system_error>
 
+#include "binary_stl.hpp"
 #include "engine/input_error.hpp"
 #include "engine/vertex_welding.hpp"
-#include "binary_stl.hpp"
 #include "split_in_two.hpp"
 
 namespace tumble::engine {
@@ -171,13 +171,13 @@ TriangleMesh import_mesh(const std::filesystem::path& file, ImportStats* stats,
   const auto status = std::filesystem::status(file, error);
   if (!std::filesystem::exists(status)) fail(file, "no such file");
   if (std::filesystem::is_directory(status)) fail(file, "is a directory, not a mesh file");
-  if (!std::ifstream(file, std::ios::binary)) fail(file, "cannot be opened for reading");
-  if (std::filesystem::file_size(file, error) == 0 && !error) fail(file, "is empty");
+  const std::uintmax_t size = std::filesystem::file_size(file, error);
+  if (!error && size == 0) fail(file, "is empty");
 
   // Binary STL is read by tumble's own reader unless assimp is asked for.
   TriangleMesh mesh;
   std::optional<detail::BinaryStl> stl;
-  if (stl_reader == StlReader::tumble) stl = detail::read_binary_stl(file);
+  if (stl_reader == StlReader::tumble && !error) stl = detail::read_binary_stl(file, size);
   if (stl) {
     mesh = std::move(stl->mesh);
     if (stats != nullptr) {
@@ -186,6 +186,7 @@ TriangleMesh import_mesh(const std::filesystem::path& file, ImportStats* stats,
       stats->own_stl_reader = true;
     }
   } else {
+    if (!std::ifstream(file, std::ios::binary)) fail(file, "cannot be opened for reading");
     mesh = import_with_assimp(file, stats);
   }
   if (mesh.triangles.empty()) fail(file, "contains no triangles");
