@@ -204,7 +204,9 @@ int compare_scene(const CompareOptions& options, const InterruptGuard& guard, st
       layout == CompareLayout::kGrid ? grid.tile_height : frame_settings.height;
   render::Renderer renderer(
       render::RendererOptions{renderer_width, renderer_height, frame_settings.antialiasing});
-  for (Run& run : runs) run.job = std::make_unique<RenderJob>(run.plan, renderer);
+  // The scene is compiled (its meshes read) once; the runs differ only in their settings.
+  const CompiledScene compiled = compile_scene(runs.front().plan.scene, /*keep_geometry=*/true);
+  for (Run& run : runs) run.job = std::make_unique<RenderJob>(run.plan, compiled, renderer);
 
   // The overlay's reference: the exact solution when it applies, tight dopri otherwise.
   std::optional<Run> reference;
@@ -217,7 +219,7 @@ int compare_scene(const CompareOptions& options, const InterruptGuard& guard, st
     reference->plan = plan_render(run_options(options, reference->integrator));
     reference->plan.settings = runs.front().plan.settings;
     if (!torque_free) reference->plan.scene.tolerance = kReferenceTolerance;
-    reference->job = std::make_unique<RenderJob>(reference->plan, renderer);
+    reference->job = std::make_unique<RenderJob>(reference->plan, compiled, renderer);
   }
 
   // Every frame time from 0 is visited by every run; frames in the range are drawn.

@@ -73,12 +73,13 @@ CLI::App& add_inspect_command(CLI::App& cli, InspectOptions& options) {
 }
 
 engine::MeshReport inspect_file(const std::filesystem::path& file,
-                                const engine::MassOptions& mass) {
-  engine::ImportStats imported;
-  engine::TriangleMesh mesh = engine::import_mesh(file, &imported);
+                                const engine::MassOptions& mass, engine::TriangleMesh* imported) {
+  engine::ImportStats stats;
+  engine::TriangleMesh mesh = engine::import_mesh(file, &stats);
+  if (imported != nullptr) *imported = mesh;
   engine::MeshReport report =
-      engine::analyze_mesh(std::move(mesh), mass, file.string(), imported.distinct_positions);
-  report.welded_vertices += imported.welded_vertices;
+      engine::analyze_mesh(std::move(mesh), mass, file.string(), stats.distinct_positions);
+  report.welded_vertices += stats.welded_vertices;
   return report;
 }
 

@@ -354,10 +354,10 @@ struct RenderJob::Impl {
   FrameBuilder builder;
   std::size_t observed = 0;  ///< frame times observed so far
 
-  Impl(const RenderPlan& plan, render::Renderer* shared)
+  Impl(const RenderPlan& plan, CompiledScene compiled_scene, render::Renderer* shared)
       : scene(plan.scene),
         settings(plan.settings),
-        compiled(compile_scene(scene, /*keep_geometry=*/true)),
+        compiled(std::move(compiled_scene)),
         simulation(make_simulation(scene, compiled)),
         own_renderer(shared != nullptr
                          ? nullptr
@@ -389,10 +389,21 @@ struct RenderJob::Impl {
   }
 };
 
-RenderJob::RenderJob(const RenderPlan& plan) : impl_(std::make_unique<Impl>(plan, nullptr)) {}
+RenderJob::RenderJob(const RenderPlan& plan)
+    : impl_(std::make_unique<Impl>(plan, compile_scene(plan.scene, /*keep_geometry=*/true),
+                                   nullptr)) {}
 
 RenderJob::RenderJob(const RenderPlan& plan, render::Renderer& renderer)
-    : impl_(std::make_unique<Impl>(plan, &renderer)) {}
+    : impl_(std::make_unique<Impl>(plan, compile_scene(plan.scene, /*keep_geometry=*/true),
+                                   &renderer)) {}
+
+RenderJob::RenderJob(const RenderPlan& plan, const CompiledScene& compiled,
+                     render::Renderer& renderer)
+    : impl_(std::make_unique<Impl>(plan, [&] {
+        CompiledScene copy = compiled;
+        copy.settings = simulation_settings(plan.scene);
+        return copy;
+      }(), &renderer)) {}
 
 RenderJob::~RenderJob() = default;
 

@@ -274,17 +274,22 @@ SceneDescription load_scene(const std::filesystem::path& file) {
   return parse_scene(read_text_file(file, "scene file (JSON)"), file);
 }
 
+engine::SimulationSettings simulation_settings(const SceneDescription& scene) {
+  engine::SimulationSettings settings;
+  settings.integrator = engine::integrator_from_name(scene.integrator).value();
+  settings.dt = scene.dt;
+  settings.duration = scene.duration;
+  if (scene.tolerance) settings.tolerance = *scene.tolerance;
+  return settings;
+}
+
 CompiledScene compile_scene(const SceneDescription& scene, bool keep_geometry) {
   CompiledScene out;
   out.geometry.resize(scene.bodies.size());
   out.reports.resize(scene.bodies.size());
   const std::string source = scene.file.string();
 
-  // Settings.
-  out.settings.integrator = engine::integrator_from_name(scene.integrator).value();
-  out.settings.dt = scene.dt;
-  out.settings.duration = scene.duration;
-  if (scene.tolerance) out.settings.tolerance = *scene.tolerance;
+  out.settings = simulation_settings(scene);
 
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const BodyDescription& body = scene.bodies[i];
@@ -301,17 +306,16 @@ CompiledScene compile_scene(const SceneDescription& scene, bool keep_geometry) {
       options.density = body.density;
       options.scale = body.scale;
       engine::MeshReport report;
+      engine::TriangleMesh shape;
       try {
-        report = inspect_file(*body.mesh, options);
+        report = inspect_file(*body.mesh, options, keep_geometry ? &shape : nullptr);
       } catch (const InputError& error) {
         throw InputError(where + ".mesh: " + error.what());
       }
       ++out.meshes_imported;
       if (keep_geometry) {
         // The drawing needs the triangles in the body frame: the file's axes, scaled, with the
-        // centre of mass at the origin. (Small demo meshes: reading twice is cheaper than
-        // keeping every mesh of every simulate run.)
-        engine::TriangleMesh shape = engine::import_mesh(*body.mesh);
+        // centre of mass at the origin.
         for (Eigen::Vector3d& p : shape.positions) {
           p = p * body.scale - report.mass_properties.center_of_mass;
         }

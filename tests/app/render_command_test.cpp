@@ -16,10 +16,11 @@
 #include "engine/input_error.hpp"
 #include "engine/simulation.hpp"
 #include "render/png_io.hpp"
+#include "render/renderer.hpp"
 #include "support/command_test.hpp"
 #include "support/image_compare.hpp"
-#include "support/run_command.hpp"
 #include "support/input_error.hpp"
+#include "support/run_command.hpp"
 
 namespace tumble::app {
 namespace {
@@ -137,6 +138,44 @@ TEST_F(RenderCommand, FramesShowTheLastStepAtOrBeforeTheirTime) {
   job.draw(image);
   EXPECT_EQ(image.width, 64);
   EXPECT_EQ(image.height, 48);
+}
+
+TEST_F(RenderCommand, AJobFromASharedCompiledSceneIsTheJobOfItsOwnPlan) {
+  // compare compiles a scene once for every integrator: a job made from that compiled scene and
+  // another plan (another integrator and dt) must be the job that plan makes on its own.
+  json scene = tumbling_scene(0.3, 0.01);
+  scene["bodies"][0] = {{"name", "handle"},
+                        {"mesh", std::string(TUMBLE_SOURCE_DIR) + "/assets/meshes/t_handle.obj"},
+                        {"density", 1000.0},
+                        {"angular_velocity", {0.3, 6.0, 0.3}}};
+  RenderOptions options;
+  options.scene = write_scene(scene);
+  options.size = "64x48";
+  options.fps = 10.0;
+  const RenderPlan rk4 = plan_render(options);
+  options.integrator = "splitting";
+  options.dt = 0.004;
+  const RenderPlan splitting = plan_render(options);
+
+  const CompiledScene compiled = compile_scene(rk4.scene, /*keep_geometry=*/true);
+  ASSERT_EQ(compiled.meshes_imported, 1u);
+  render::Renderer renderer(render::RendererOptions{64, 48, 1});
+  RenderJob shared(splitting, compiled, renderer);
+  RenderJob own(splitting, renderer);
+  EXPECT_EQ(shared.simulation().settings().integrator, engine::IntegratorKind::kSplitting);
+  EXPECT_EQ(shared.simulation().settings().dt, 0.004);
+  const std::size_t last = splitting.total_frames - 1;
+  shared.advance_to(last);
+  own.advance_to(last);
+  EXPECT_EQ(shared.simulation().steps(), own.simulation().steps());
+  const engine::BodyState& a = shared.simulation().states()[0];
+  const engine::BodyState& b = own.simulation().states()[0];
+  EXPECT_EQ(a.orientation.coeffs(), b.orientation.coeffs());
+  EXPECT_EQ(a.angular_momentum, b.angular_momentum);
+  render::Image from_shared, from_own;
+  shared.draw(from_shared);
+  own.draw(from_own);
+  EXPECT_TRUE(from_shared.rgba == from_own.rgba);
 }
 
 TEST_F(RenderCommand, HelpListsEveryOption) {

@@ -26,8 +26,11 @@ struct InspectOptions {
 /// Adds the `inspect` subcommand and its options to `cli`, filling `options` when parsed.
 CLI::App& add_inspect_command(CLI::App& cli, InspectOptions& options);
 
-/// Imports and analyses one mesh file (throws engine::InputError naming the file).
-engine::MeshReport inspect_file(const std::filesystem::path& file, const engine::MassOptions& mass);
+/// Imports and analyses one mesh file (throws engine::InputError naming the file). With
+/// `imported`, also hands back the mesh as read (file axes, before the analysis welds, drops
+/// or flips anything), for drawing it without reading the file again.
+engine::MeshReport inspect_file(const std::filesystem::path& file, const engine::MassOptions& mass,
+                                engine::TriangleMesh* imported = nullptr);
 
 /// The report as one JSON object (SI units; inertia about the centre of mass, file axes).
 nlohmann::json report_to_json(const engine::MeshReport& report);

@@ -110,6 +110,11 @@ class RenderJob {
   /// caller's business): several jobs can share one GL context, and their draw lists' meshes
   /// are valid in it. Throws engine::InputError (scene).
   RenderJob(const RenderPlan& plan, render::Renderer& renderer);
+  /// Same, with the scene already compiled (from a plan that differs from this one at most in
+  /// its simulation settings, which are taken from `plan`): runs of one scene under several
+  /// integrators read its meshes once. Throws engine::InputError (an integrator that cannot
+  /// take a body).
+  RenderJob(const RenderPlan& plan, const CompiledScene& compiled, render::Renderer& renderer);
   ~RenderJob();
   RenderJob(const RenderJob&) = delete;
   RenderJob& operator=(const RenderJob&) = delete;

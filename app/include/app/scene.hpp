@@ -126,4 +126,9 @@ struct CompiledScene {
 /// With `keep_geometry`, the meshes are kept for drawing (see CompiledScene::geometry).
 CompiledScene compile_scene(const SceneDescription& scene, bool keep_geometry = false);
 
+/// The simulation settings of a scene (integrator, dt, duration, tolerance): what
+/// compile_scene puts in CompiledScene::settings, for runs of one compiled scene that differ
+/// only there.
+engine::SimulationSettings simulation_settings(const SceneDescription& scene);
+
 }  // namespace tumble::app
