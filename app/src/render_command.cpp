@@ -38,7 +38,6 @@ namespace {
 
 using engine::InputError;
 
-constexpr int kMaxImageSide = 8192;
 constexpr double kMaxFrames = 1e8;
 
 std::string number_text(double value, const char* format = "%.6g") {
@@ -77,11 +76,18 @@ RenderSettings render_settings(const RenderOptions& options, const SceneDescript
   RenderSettings settings = parse_render_settings(
       scene.render ? *scene.render : nlohmann::json::object(), scene.file.string(), body_names);
   if (options.size) std::tie(settings.width, settings.height) = parse_frame_size(*options.size);
-  if (options.fps) settings.fps = positive_option(*options.fps, "--fps");
+  if (options.fps) {
+    settings.fps = positive_option(*options.fps, "--fps");
+    if (settings.fps > kMaxFps) {
+      throw InputError("--fps: expected at most " + number_text(kMaxFps) +
+                       " frames per second, got " + number_text(settings.fps));
+    }
+  }
   if (options.time_scale) settings.time_scale = positive_option(*options.time_scale, "--time-scale");
   if (options.antialiasing) {
-    if (*options.antialiasing < 1 || *options.antialiasing > 16) {
-      throw InputError("--aa: expected samples per pixel from 1 to 16, got " +
+    if (*options.antialiasing < 1 || *options.antialiasing > kMaxAntialiasing) {
+      throw InputError("--aa: expected samples per pixel from 1 to " +
+                       std::to_string(kMaxAntialiasing) + ", got " +
                        std::to_string(*options.antialiasing));
     }
     settings.antialiasing = *options.antialiasing;

@@ -19,8 +19,6 @@ namespace {
 using engine::InputError;
 using nlohmann::json;
 
-constexpr int kMaxImageSide = 7680;
-constexpr double kMaxFps = 240.0;
 
 using Field = JsonField;
 
@@ -144,7 +142,7 @@ RenderSettings parse_render_settings(const nlohmann::json& render, const std::st
     }
   }
   if (auto scale = top.find("time_scale")) settings.time_scale = scale->positive();
-  if (auto samples = top.find("antialiasing")) settings.antialiasing = samples->integer(1, 16);
+  if (auto samples = top.find("antialiasing")) settings.antialiasing = samples->integer(1, kMaxAntialiasing);
 
   // What is seen, and from where.
   if (auto camera = top.find("camera")) settings.camera = parse_camera(*camera, body_names);

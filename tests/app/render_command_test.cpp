@@ -321,6 +321,7 @@ TEST_F(RenderCommand, OptionErrorsNameTheOption) {
       {"--size 160", "--size: expected WIDTHxHEIGHT in pixels, each from 1 to 8192"},
       {"--size 0x96", "got \"0x96\""},
       {"--fps 0", "--fps: expected a positive finite number, got 0"},
+      {"--fps 241", "--fps: expected at most 240 frames per second, got 241"},
       {"--time-scale -1", "--time-scale: expected a positive finite number, got -1"},
       {"--aa 0", "--aa: expected samples per pixel from 1 to 16, got 0"},
       {"--integrator nope", "--integrator: unknown integrator \"nope\"; expected one of: "},

@@ -49,6 +49,12 @@ struct ShowSettings {
   std::vector<TrailSettings> trails;
 };
 
+/// Limits of the render settings, the same from a scene's `render` object and from the
+/// command line's --size, --fps and --aa.
+inline constexpr int kMaxImageSide = 8192;   ///< pixels
+inline constexpr double kMaxFps = 240.0;     ///< frames per second
+inline constexpr int kMaxAntialiasing = 16;  ///< samples per pixel
+
 /// Everything `tumble render` needs beyond the simulation.
 struct RenderSettings {
   int width = 1280;
