@@ -4,8 +4,6 @@
 
 #include "app/option_lists.hpp"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cctype>
 #include <functional>
@@ -235,7 +233,7 @@ int bench(const BenchOptions& options, std::ostream& out, std::ostream& err) {
     outcome.cores_available = cores.size();
     outcome.workers = std::clamp<std::size_t>(jobs, 1, cores.size());
     outcome.cores_used.assign(cores.begin(), cores.begin() + static_cast<long>(outcome.workers));
-    const bool tty = &err == &std::cerr && ::isatty(STDERR_FILENO);
+    const bool tty = ProgressBar::on_terminal(err);
     ProgressBar bar(err, outcome.cases.size(), "runs", tty);
     const std::size_t total = outcome.cases.size();
     outcome.results = run_cases(

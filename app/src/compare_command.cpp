@@ -15,8 +15,6 @@
 
 #include "app/option_lists.hpp"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -370,7 +368,7 @@ GridLayout grid_layout(std::size_t panels, int width, int height) {
 }
 
 int run_compare(const CompareOptions& options, std::ostream& out, std::ostream& err) {
-  const bool progress = !options.quiet && &err == &std::cerr && ::isatty(STDERR_FILENO) == 1;
+  const bool progress = !options.quiet && ProgressBar::on_terminal(err);
   const InterruptGuard guard;
   const auto fail = [&](const std::exception& error) {
     if (guard.interrupted()) {

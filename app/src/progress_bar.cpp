@@ -1,8 +1,11 @@
 #include "progress_bar.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iostream>
 #include <ostream>
 #include <utility>
 
@@ -26,6 +29,10 @@ std::string clock_text(double seconds) {
 }
 
 }  // namespace
+
+bool ProgressBar::on_terminal(const std::ostream& out) {
+  return &out == &std::cerr && ::isatty(STDERR_FILENO) == 1;
+}
 
 ProgressBar::ProgressBar(std::ostream& out, std::size_t total, std::string unit, bool enabled)
     : out_(out),

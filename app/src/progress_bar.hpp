@@ -9,9 +9,13 @@
 namespace tumble::app {
 
 /// Redraws one line in place ("\r", then erase to the end of the line), at most ten times a
-/// second. A disabled bar prints nothing, so callers need not test for a terminal themselves.
+/// second. A disabled bar prints nothing; enable it where on_terminal() says so.
 class ProgressBar {
  public:
+  /// Whether `out` is the process's standard error and that is a terminal: where a bar that
+  /// redraws its line can be seen (a log file or a pipe would collect every redraw).
+  static bool on_terminal(const std::ostream& out);
+
   /// `unit` names what is counted ("frames"); `total` is the count at 100 %.
   ProgressBar(std::ostream& out, std::size_t total, std::string unit, bool enabled);
   ~ProgressBar();

@@ -8,8 +8,6 @@
 #include "app/render_command.hpp"
 
 #include <signal.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -437,7 +435,7 @@ const engine::Simulation& RenderJob::simulation() const {
 }
 
 int run_render(const RenderOptions& options, std::ostream& out, std::ostream& err) {
-  const bool progress = !options.quiet && &err == &std::cerr && ::isatty(STDERR_FILENO) == 1;
+  const bool progress = !options.quiet && ProgressBar::on_terminal(err);
   const InterruptGuard guard;
   // Input, output, ffmpeg and GL errors are one line and status 1, or an interruption when
   // one is under way (ffmpeg shares the terminal's SIGINT and may fail first).
