@@ -126,7 +126,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{R"({"size": [641, 480]})", "render.size[0]: expected an even number of pixels"},
         BadCase{R"({"size": [640, 481]})", "render.size[1]: expected an even number of pixels"},
         BadCase{R"({"size": [0, 480]})", "render.size[0]: expected a whole number from 2 to 8192"},
-        BadCase{R"({"size": [7682, 480]})", "render.size[0]: expected a whole number from 2"},
+        BadCase{R"({"size": [8194, 480]})", "render.size[0]: expected a whole number from 2"},
         BadCase{R"({"size": [640.5, 480]})", "render.size[0]: expected a whole number"},
         BadCase{R"({"size": ["640", 480]})", "render.size[0]: expected a number, got the string"},
         BadCase{R"({"fps": 0})", "render.fps: expected a positive number, got 0"},
