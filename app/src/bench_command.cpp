@@ -209,13 +209,14 @@ std::string case_line(const BenchScene& scene, const BenchCase& c, const CaseRes
 }
 
 int bench(const BenchOptions& options, std::ostream& out, std::ostream& err) {
-  // Everything the user typed is checked before any output is created.
+  // Everything the user typed is checked before any output is created, the cheap checks
+  // before the scenes' meshes are read.
   BenchOutcome outcome;
-  plan(options, outcome.scenes, outcome.cases);
   outcome.repeat =
       static_cast<int>(parse_count(options.repeat.value_or("3"), "--repeat", 1));
   const auto jobs = static_cast<std::size_t>(parse_count(options.jobs.value_or("1"), "--jobs", 1));
   if (!gnuplot_available()) throw InputError("gnuplot is not installed (needed for the plots)");
+  plan(options, outcome.scenes, outcome.cases);
   const std::filesystem::path tmp = start_output_folder(options.output, kBenchOutput);
 
   try {

@@ -26,6 +26,7 @@
 
 #include "app/scene.hpp"
 #include "app/simulate_command.hpp"
+#include "gnuplot.hpp"
 #include "stability_plot.hpp"
 #include "stability_suite.hpp"
 #include "engine/input_error.hpp"
@@ -427,6 +428,7 @@ int stability(const StabilityOptions& options, std::ostream& out, std::ostream& 
   const std::vector<engine::IntegratorInfo> integrators = parse_integrators(options.integrators);
   std::string suite;
   const std::vector<StabilityCase> cases = gather_cases(options, suite);
+  if (!gnuplot_available()) throw InputError("gnuplot is not installed (needed for the heat map)");
   const fs::path output = *options.output;
   const fs::path temporary = start_output_folder(output, kStabilityOutput);
   try {
