@@ -337,10 +337,8 @@ CompiledScene compile_scene(const SceneDescription& scene, bool keep_geometry) {
     // Inertia about the rotation centre (parallel axes for a pivot) and its principal frame.
     // A free mesh body keeps the report's frame; a diagonal, ascending inertia keeps the user's.
     const Eigen::Vector3d centre = body.pivot.value_or(Eigen::Vector3d::Zero());  // body frame
-    const Eigen::Vector3d com_from_centre = -centre;
-    const Eigen::Matrix3d inertia =
-        inertia_com + model.mass * (com_from_centre.squaredNorm() * Eigen::Matrix3d::Identity() -
-                                    com_from_centre * com_from_centre.transpose());
+    const engine::MassProperties about_com{model.mass, Eigen::Vector3d::Zero(), inertia_com};
+    const Eigen::Matrix3d inertia = about_com.inertia_about(centre);
     engine::PrincipalFrame frame;
     const Eigen::Vector3d diagonal = inertia.diagonal();
     if (mesh_principal && !body.pivot) {
@@ -360,7 +358,7 @@ CompiledScene compile_scene(const SceneDescription& scene, bool keep_geometry) {
     const Eigen::Matrix3d body_to_principal = frame.axes.transpose();
     model.moments = frame.moments;
     model.principal_to_body = principal_to_body;
-    model.center_offset = body_to_principal * com_from_centre;
+    model.center_offset = body_to_principal * -centre;  // the centre of mass from the centre
     if (body.pivot) {
       model.pivoted = true;
       model.pivot = body.position + body.orientation * centre;
