@@ -74,7 +74,7 @@ void append_number(std::string& out, double value) {
 }
 
 void append_csv_field(std::string& out, std::string_view text) {
-  if (text.find_first_of(",\"") == std::string_view::npos) {
+  if (text.find_first_of(",\"\r\n") == std::string_view::npos) {
     out.append(text);
     return;
   }

@@ -9,6 +9,7 @@
 // dopri run at tolerance 1e-12 per case.
 #include "app/stability_command.hpp"
 
+#include "app/csv_writer.hpp"
 #include "app/option_lists.hpp"
 #include "app/output_folder.hpp"
 
@@ -270,10 +271,9 @@ RunRecord run_one(const StabilityCase& c, const engine::IntegratorInfo& info, do
 // Outputs.
 
 std::string csv_field(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string out = "\"";
-  for (const char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
+  std::string out;
+  append_csv_field(out, text);
+  return out;
 }
 
 std::string optional_number(const std::optional<double>& value) {

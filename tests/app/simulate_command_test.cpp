@@ -462,6 +462,9 @@ TEST(CsvNumbers, SeventeenSignificantDigitsAndQuotedNames) {
   append_csv_field(out, "plain");
   append_csv_field(out, "a,\"b\"");
   EXPECT_EQ(out, "plain\"a,\"\"b\"\"\"");
+  out.clear();
+  append_csv_field(out, "two\nlines");
+  EXPECT_EQ(out, "\"two\nlines\"");
 }
 
 }  // namespace

@@ -76,7 +76,8 @@ class TrajectoryCsv {
 /// `value` as printf("%.17g") writes it (reads back exactly), locale-independent.
 void append_number(std::string& out, double value);
 
-/// `text` as a CSV field: quoted (with doubled quotes) only when it holds a comma or a quote.
+/// `text` as a CSV field (RFC 4180): quoted, with doubled quotes, only when it holds a comma,
+/// a quote or a line break.
 void append_csv_field(std::string& out, std::string_view text);
 
 }  // namespace tumble::app
