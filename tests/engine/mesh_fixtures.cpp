@@ -4,6 +4,7 @@
 // as float32 (small integers, halves, quarters) arrive in assimp's float storage unchanged and
 // the tests can compare against the closed forms to rounding of the integration itself.
 #include "mesh_fixtures.hpp"
+#include "support/stl_writer.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -209,15 +210,14 @@ void write_file(const std::filesystem::path& file, const std::string& bytes) {
 
 std::string binary_stl_bytes(const Polyhedron& mesh, const std::string& header) {
   require_triangles(mesh, "binary STL");
-  std::string bytes = header;
-  bytes.resize(80, '\0');
-  append_binary(bytes, static_cast<std::uint32_t>(mesh.faces.size()));
-  for (const auto& face : mesh.faces) {
-    append_vec3f(bytes, face_normal(mesh, face));
-    for (const std::uint32_t v : face) append_vec3f(bytes, mesh.vertices[v]);
-    append_binary(bytes, std::uint16_t{0});
-  }
-  return bytes;
+  return tumble::testing::binary_stl_bytes(
+      mesh.faces.size(),
+      [&](std::size_t i) {
+        const auto& face = mesh.faces[i];
+        return tumble::testing::StlTriangle{face_normal(mesh, face), mesh.vertices[face[0]],
+                                            mesh.vertices[face[1]], mesh.vertices[face[2]]};
+      },
+      header);
 }
 
 void write_stl_binary(const std::filesystem::path& file, const Polyhedron& mesh) {

@@ -91,17 +91,6 @@ TEST(ImageSink, UnfinishedPngSequenceLeavesNothing) {
   std::filesystem::remove_all(dir);
 }
 
-/// ffprobe's "codec,width,height,frames" of the first video stream.
-std::string probe(const std::filesystem::path& file) {
-  const auto result = tumble::testing::run_command(
-      "ffprobe -v error -select_streams v:0 -count_frames -show_entries "
-      "stream=codec_name,width,height,nb_read_frames -of csv=p=0 '" +
-      file.string() + "'");
-  EXPECT_EQ(result.status, 0) << result.err;
-  std::string out = result.out;
-  while (!out.empty() && (out.back() == '\n' || out.back() == ',')) out.pop_back();
-  return out;
-}
 
 TEST(ImageSink, Mp4IsH264WithEveryFrameAndMatchesThePngs) {
   const auto dir = tumble::testing::fresh_directory("mp4_sink");
@@ -110,7 +99,7 @@ TEST(ImageSink, Mp4IsH264WithEveryFrameAndMatchesThePngs) {
   for (const Image& image : images) sink->write(image);
   sink->finish();
   EXPECT_EQ(directory_entries(dir), std::vector<std::string>{"out.mp4"});
-  EXPECT_EQ(probe(dir / "out.mp4"), "h264,96,64,12");
+  EXPECT_EQ(tumble::testing::probe_video(dir / "out.mp4"), "h264,96,64,12");
 
   // Decode frame 5 and compare with the rendered image (lossy yuv420p: small mean error).
   const auto decoded = dir / "frame5.png";
@@ -137,8 +126,8 @@ TEST(ImageSink, WebmAndGifHaveEveryFrame) {
     sink->finish();
   }
   EXPECT_EQ(directory_entries(dir), (std::vector<std::string>{"out.gif", "out.webm"}));
-  EXPECT_EQ(probe(dir / "out.webm"), "vp9,96,64,12");
-  EXPECT_EQ(probe(dir / "out.gif"), "gif,96,64,12");
+  EXPECT_EQ(tumble::testing::probe_video(dir / "out.webm"), "vp9,96,64,12");
+  EXPECT_EQ(tumble::testing::probe_video(dir / "out.gif"), "gif,96,64,12");
   std::filesystem::remove_all(dir);
 }
 

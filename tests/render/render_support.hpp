@@ -115,11 +115,9 @@ inline void expect_matches_golden(const Image& image, const std::string& name) {
   const Image expected = read_png(golden);
   ASSERT_EQ(expected.width, image.width);
   ASSERT_EQ(expected.height, image.height);
-  int outliers = 0;
-  for (int y = 0; y < image.height; ++y) {
-    for (int x = 0; x < image.width; ++x) outliers += pixel_difference(expected, image, x, y) > 32;
-  }
-  EXPECT_LE(outliers, image.width * image.height / 100) << name;
+  EXPECT_LE(tumble::testing::pixels_differing(expected, image, 32),
+            static_cast<std::size_t>(image.width * image.height / 100))
+      << name;
   EXPECT_LT(mean_difference(expected, image), 1.5) << name;
 }
 

@@ -14,17 +14,6 @@
 
 namespace tumble::testing {
 
-/// "codec,width,height,frames" of a video's first stream, as ffprobe counts them.
-inline std::string probe_video(const std::string& file) {
-  const auto result = run_command(
-      "ffprobe -v error -select_streams v:0 -count_frames -show_entries "
-      "stream=codec_name,width,height,nb_read_frames -of csv=p=0 '" +
-      file + "'");
-  EXPECT_EQ(result.status, 0) << result.err;
-  std::string text = result.out;
-  while (!text.empty() && (text.back() == '\n' || text.back() == ',')) text.pop_back();
-  return text;
-}
 
 /// A needle (moments 0.001 : 1 : 1) spun fast about its axis with a wobble: with dt = 0.01,
 /// explicit Euler blows up at step 241 (t = 2.41 s), while stable integrators get through.

@@ -2,7 +2,9 @@
 // Runs a shell command and captures its exit status, stdout and stderr (for end-to-end tests of
 // the `tumble` executable).
 
+#include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -63,5 +65,17 @@ inline CommandResult run_command(const std::string& command) {
 
 /// The `tumble` executable of this build.
 inline std::string tumble_executable() { return std::string(TUMBLE_BINARY_DIR) + "/app/tumble"; }
+
+/// "codec,width,height,frames" of a video's first stream, as ffprobe counts them.
+inline std::string probe_video(const std::filesystem::path& file) {
+  const auto result = run_command(
+      "ffprobe -v error -select_streams v:0 -count_frames -show_entries "
+      "stream=codec_name,width,height,nb_read_frames -of csv=p=0 '" +
+      file.string() + "'");
+  EXPECT_EQ(result.status, 0) << result.err;
+  std::string text = result.out;
+  while (!text.empty() && (text.back() == '\n' || text.back() == ',')) text.pop_back();
+  return text;
+}
 
 }  // namespace tumble::testing
