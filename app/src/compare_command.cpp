@@ -261,19 +261,19 @@ int compare_scene(const CompareOptions& options, const InterruptGuard& guard, st
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  // Blow-ups: the output is complete (those runs hold their last good state); one line each.
+  // Blow-ups, the overlay's reference's included: the output is complete (those runs hold
+  // their last good state); one line each.
   int status = 0;
-  for (const Run& run : runs) {
+  const auto warn = [&](const Run& run, const std::string& who) {
     const engine::Simulation& simulation = run.job->simulation();
-    if (const auto& blow_up = simulation.blow_up()) {
-      err << "tumble compare: warning: " << run.integrator << " blew up: body '"
-          << simulation.bodies()[blow_up->body].name << "' at step " << blow_up->step
-          << " (t = " << number_text(blow_up->time, "%.9g") << " s): " << blow_up->reason
-          << "; its later frames hold the last good state (t = "
-          << number_text(simulation.time(), "%.9g") << " s)\n";
-      status = kExitBlowUp;
-    }
-  }
+    if (!simulation.blow_up()) return;
+    err << "tumble compare: warning: " << who << " blew up: " << describe_blow_up(simulation)
+        << "; its later frames hold the last good state (t = "
+        << number_text(simulation.time(), "%.9g") << " s)\n";
+    status = kExitBlowUp;
+  };
+  for (const Run& run : runs) warn(run, run.integrator);
+  if (reference) warn(*reference, "the reference (" + reference->integrator + ")");
   if (!options.quiet) {
     const std::size_t frames = sink->frames();
     out << "tumble compare: " << runs.size() << " integrators, " << frames

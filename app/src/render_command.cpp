@@ -147,10 +147,8 @@ int render_scene(const RenderOptions& options, const InterruptGuard& guard, std:
 
   // A blow-up still gives a whole video (the last good state held), with a warning and status 3.
   int status = 0;
-  if (const auto& blow_up = simulation.blow_up()) {
-    err << "tumble render: warning: blow-up: body '" << simulation.bodies()[blow_up->body].name
-        << "' at step " << blow_up->step << " (t = " << number_text(blow_up->time, "%.9g")
-        << " s): " << blow_up->reason
+  if (simulation.blow_up()) {
+    err << "tumble render: warning: blow-up: " << describe_blow_up(simulation)
         << "; later frames hold the last good state (t = " << number_text(simulation.time(), "%.9g")
         << " s)\n";
     status = kExitBlowUp;

@@ -197,10 +197,8 @@ int simulate(const SimulateOptions& options, RunSummary& summary, std::ostream& 
                                                      simulation.states()[i], simulation.time());
     summary.bodies.push_back(body);
   }
-  if (const auto& blow_up = simulation.blow_up()) {
-    std::string message = "blow-up: body '" + bodies[blow_up->body].name + "' at step " +
-                          std::to_string(blow_up->step) +
-                          " (t = " + number_text(blow_up->time, "%.9g") + " s): " + blow_up->reason;
+  if (simulation.blow_up()) {
+    std::string message = "blow-up: " + describe_blow_up(simulation);
     if (csv) {
       message += "; " + csv->path().string() +
                  " holds the rows up to t = " + number_text(simulation.time(), "%.9g") + " s";
@@ -213,6 +211,14 @@ int simulate(const SimulateOptions& options, RunSummary& summary, std::ostream& 
 }
 
 }  // namespace
+
+std::string describe_blow_up(const engine::Simulation& simulation) {
+  const auto& blow_up = simulation.blow_up();
+  if (!blow_up) return {};
+  return "body '" + simulation.bodies()[blow_up->body].name + "' at step " +
+         std::to_string(blow_up->step) + " (t = " + number_text(blow_up->time, "%.9g") +
+         " s): " + blow_up->reason;
+}
 
 CLI::App& add_simulate_command(CLI::App& cli, SimulateOptions& options) {
   CLI::App& simulate = *cli.add_subcommand(

@@ -15,11 +15,19 @@ namespace CLI {
 class App;
 }  // namespace CLI
 
+namespace tumble::engine {
+class Simulation;
+}  // namespace tumble::engine
+
 namespace tumble::app {
 
 /// Exit statuses of `tumble simulate`.
 inline constexpr int kExitInputError = 1;  ///< bad scene, option or output path
 inline constexpr int kExitBlowUp = 3;      ///< the run blew up (the CSV so far is kept)
+
+/// "body 'NAME' at step N (t = T s): REASON": how every command names a run's blow-up (empty
+/// when `simulation` has not blown up).
+std::string describe_blow_up(const engine::Simulation& simulation);
 
 /// What `tumble simulate` was asked to do. Options given here override the scene.
 struct SimulateOptions {
