@@ -1,8 +1,9 @@
 // `tumble bench`: options, validation, the output directory and the run of every case.
 #include "app/bench_command.hpp"
-#include "app/output_folder.hpp"
 
 #include "app/option_lists.hpp"
+#include "app/output_folder.hpp"
+#include "app/printf_number.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -34,11 +35,6 @@ using engine::InputError;
 /// Adaptive runs are sampled about this many times (their output step caps their step size).
 constexpr std::size_t kAdaptiveSamples = 10;
 
-std::string number_text(double value, const char* format = "%.6g") {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, value);
-  return buffer;
-}
 
 /// A whole number in [minimum, ...] or an error naming the option.
 long long parse_count(const std::string& text, const char* option, long long minimum) {
@@ -135,7 +131,7 @@ void plan(const BenchOptions& options, std::vector<BenchScene>& scenes,
       steps = *dts;
       for (double dt : steps) {
         if (auto problem = step_problem(dt, description.duration)) {
-          throw InputError("--dts: " + number_text(dt) + ": " + *problem);
+          throw InputError("--dts: " + printf_number(dt) + ": " + *problem);
         }
       }
     } else {
@@ -150,8 +146,8 @@ void plan(const BenchOptions& options, std::vector<BenchScene>& scenes,
     for (double dt : steps) {
       const double ratio = interval / dt;
       if (std::abs(ratio - std::round(ratio)) > 1e-9 * ratio) {
-        throw InputError("--dts: " + number_text(dt) + " does not divide the largest step " +
-                         number_text(interval) + " (the errors are sampled on its grid)");
+        throw InputError("--dts: " + printf_number(dt) + " does not divide the largest step " +
+                         printf_number(interval) + " (the errors are sampled on its grid)");
       }
     }
 
@@ -201,11 +197,11 @@ const OutputFolderKind kBenchOutput{"bench", "report.md", "# tumble bench", "res
 
 std::string case_line(const BenchScene& scene, const BenchCase& c, const CaseResult& r) {
   std::string line = scene.label + " " + c.integrator + " " +
-                     (c.tolerance ? "tol " + number_text(*c.tolerance, "%.3g")
-                                  : "dt " + number_text(c.dt, "%.4g")) +
-                     ": " + number_text(r.median_seconds, "%.3g") + " s, ";
-  if (r.blow_up_time) return line + "blew up at t = " + number_text(*r.blow_up_time) + " s";
-  return line + "orientation error " + number_text(r.errors.orientation_final, "%.2e") + " rad";
+                     (c.tolerance ? "tol " + printf_number(*c.tolerance, "%.3g")
+                                  : "dt " + printf_number(c.dt, "%.4g")) +
+                     ": " + printf_number(r.median_seconds, "%.3g") + " s, ";
+  if (r.blow_up_time) return line + "blew up at t = " + printf_number(*r.blow_up_time) + " s";
+  return line + "orientation error " + printf_number(r.errors.orientation_final, "%.2e") + " rad";
 }
 
 int bench(const BenchOptions& options, std::ostream& out, std::ostream& err) {

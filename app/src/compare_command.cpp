@@ -14,6 +14,7 @@
 #include "app/compare_command.hpp"
 
 #include "app/option_lists.hpp"
+#include "app/printf_number.hpp"
 
 #include <algorithm>
 #include <array>
@@ -65,11 +66,6 @@ constexpr std::uint8_t kGapGrey = 24;
 constexpr double kReferenceTolerance = 1e-12;
 constexpr int kMinTileSide = 16;
 
-std::string number_text(double value, const char* format = "%.6g") {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, value);
-  return buffer;
-}
 
 /// One integrator's run: its plan and its render job.
 struct Run {
@@ -89,11 +85,11 @@ RenderOptions run_options(const CompareOptions& options, const std::string& inte
 
 /// "rk4, dt = 0.01 s"
 std::string run_title(const Run& run) {
-  return run.integrator + ", dt = " + number_text(run.plan.scene.dt, "%g") + " s";
+  return run.integrator + ", dt = " + printf_number(run.plan.scene.dt, "%g") + " s";
 }
 
 std::string blow_up_text(const engine::BlowUp& blow_up) {
-  return "blew up at t = " + number_text(blow_up.time, "%.4g") + " s";
+  return "blew up at t = " + printf_number(blow_up.time, "%.4g") + " s";
 }
 
 /// Fills `image` (resized to width x height) with an opaque grey.
@@ -121,7 +117,7 @@ void fit_panel(render::DrawList& list, const Run& run, const GridLayout& grid) {
   render::OverlayPanel& panel = list.panels.front();
   panel.title = run_title(run);
   panel.width_px = std::min(260.0f, static_cast<float>(grid.tile_width) - 20.0f);
-  panel.lines = {"t = " + number_text(simulation.time(), "%.3f") + " s"};
+  panel.lines = {"t = " + printf_number(simulation.time(), "%.3f") + " s"};
   if (const auto& blow_up = simulation.blow_up()) panel.lines.push_back(blow_up_text(*blow_up));
   const float plot_height = std::clamp(0.1f * static_cast<float>(grid.tile_height), 14.0f, 50.0f);
   for (render::Plot& plot : panel.plots) plot.height_px = plot_height;
@@ -142,7 +138,7 @@ render::DrawList overlay_frame(const std::vector<Run>& runs, const Run& referenc
   legend.title = reference.plan.scene.name;
   legend.width_px = 300.0f;
   legend.lines.push_back(
-      "t = " + number_text(reference.job->simulation().time(), "%.3f") + " s");
+      "t = " + printf_number(reference.job->simulation().time(), "%.3f") + " s");
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const NamedColour& colour = kRunPalette[i % kRunPalette.size()];
     for (render::MeshInstance mesh : runs[i].job->build().meshes) {
@@ -269,7 +265,7 @@ int compare_scene(const CompareOptions& options, const InterruptGuard& guard, st
     if (!simulation.blow_up()) return;
     err << "tumble compare: warning: " << who << " blew up: " << describe_blow_up(simulation)
         << "; its later frames hold the last good state (t = "
-        << number_text(simulation.time(), "%.9g") << " s)\n";
+        << printf_number(simulation.time(), "%.9g") << " s)\n";
     status = kExitBlowUp;
   };
   for (const Run& run : runs) warn(run, run.integrator);
@@ -281,7 +277,7 @@ int compare_scene(const CompareOptions& options, const InterruptGuard& guard, st
         << (layout == CompareLayout::kGrid
                 ? "grid " + std::to_string(grid.columns) + "x" + std::to_string(grid.rows)
                 : "overlay on " + reference->integrator)
-        << ") written to '" << options.output.string() << "' in " << number_text(seconds, "%.2f")
+        << ") written to '" << options.output.string() << "' in " << printf_number(seconds, "%.2f")
         << " s\n";
   }
   return status;

@@ -8,6 +8,7 @@
 #include "app/render_command.hpp"
 
 #include <signal.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -23,6 +24,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/frame_builder.hpp"
+#include "app/printf_number.hpp"
 #include "app/simulate_command.hpp"
 #include "engine/input_error.hpp"
 #include "engine/integrators.hpp"
@@ -38,11 +40,6 @@ using engine::InputError;
 
 constexpr double kMaxFrames = 1e8;
 
-std::string number_text(double value, const char* format = "%.6g") {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, value);
-  return buffer;
-}
 
 
 /// Digits only (no sign, no spaces), at most 12 of them.
@@ -77,8 +74,8 @@ RenderSettings render_settings(const RenderOptions& options, const SceneDescript
   if (options.fps) {
     settings.fps = positive_option(*options.fps, "--fps");
     if (settings.fps > kMaxFps) {
-      throw InputError("--fps: expected at most " + number_text(kMaxFps) +
-                       " frames per second, got " + number_text(settings.fps));
+      throw InputError("--fps: expected at most " + printf_number(kMaxFps) +
+                       " frames per second, got " + printf_number(settings.fps));
     }
   }
   if (options.time_scale) settings.time_scale = positive_option(*options.time_scale, "--time-scale");
@@ -149,15 +146,15 @@ int render_scene(const RenderOptions& options, const InterruptGuard& guard, std:
   int status = 0;
   if (simulation.blow_up()) {
     err << "tumble render: warning: blow-up: " << describe_blow_up(simulation)
-        << "; later frames hold the last good state (t = " << number_text(simulation.time(), "%.9g")
+        << "; later frames hold the last good state (t = " << printf_number(simulation.time(), "%.9g")
         << " s)\n";
     status = kExitBlowUp;
   }
   if (!options.quiet) {
     const std::size_t frames = sink->frames();
     out << "tumble render: " << frames << (frames == 1 ? " frame" : " frames") << " written to '"
-        << options.output.string() << "' in " << number_text(seconds, "%.2f") << " s ("
-        << number_text(seconds > 0.0 ? static_cast<double>(frames) / seconds : 0.0, "%.1f")
+        << options.output.string() << "' in " << printf_number(seconds, "%.2f") << " s ("
+        << printf_number(seconds > 0.0 ? static_cast<double>(frames) / seconds : 0.0, "%.1f")
         << " frames/s)\n";
   }
   return status;
@@ -335,9 +332,9 @@ RenderPlan plan_render(const RenderOptions& options) {
   const double frames = plan.scene.duration * plan.settings.fps / plan.settings.time_scale;
   if (!(frames < kMaxFrames)) {
     throw InputError(plan.scene.file.string() + ": a duration of " +
-                     number_text(plan.scene.duration) + " s at " + number_text(plan.settings.fps) +
-                     " fps and time scale " + number_text(plan.settings.time_scale) +
-                     " makes more than " + number_text(kMaxFrames) + " frames");
+                     printf_number(plan.scene.duration) + " s at " + printf_number(plan.settings.fps) +
+                     " fps and time scale " + printf_number(plan.settings.time_scale) +
+                     " makes more than " + printf_number(kMaxFrames) + " frames");
   }
   plan.total_frames = frame_count(plan.scene.duration, plan.settings.fps, plan.settings.time_scale);
   plan.frames = options.frames ? parse_frame_range(*options.frames, plan.total_frames)

@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/csv_writer.hpp"
+#include "app/printf_number.hpp"
 #include "app/scene.hpp"
 #include "engine/input_error.hpp"
 #include "engine/integrators.hpp"
@@ -21,11 +22,6 @@ namespace {
 
 using engine::InputError;
 
-std::string number_text(double value, const char* format = "%.6g") {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, value);
-  return buffer;
-}
 
 
 /// Applies the command-line options on top of the scene and checks them all.
@@ -43,7 +39,7 @@ void apply_options(const SimulateOptions& options, SceneDescription& scene) {
   }
   if (options.blowup_factor && !(positive_option(*options.blowup_factor, "--blowup-factor") > 1.0)) {
     throw InputError("--blowup-factor: expected a growth factor > 1, got " +
-                     number_text(*options.blowup_factor, "%.17g"));
+                     printf_number(*options.blowup_factor, "%.17g"));
   }
 }
 
@@ -201,7 +197,7 @@ int simulate(const SimulateOptions& options, RunSummary& summary, std::ostream& 
     std::string message = "blow-up: " + describe_blow_up(simulation);
     if (csv) {
       message += "; " + csv->path().string() +
-                 " holds the rows up to t = " + number_text(simulation.time(), "%.9g") + " s";
+                 " holds the rows up to t = " + printf_number(simulation.time(), "%.9g") + " s";
     }
     err << "tumble simulate: " << message << "\n";
     summary.blow_up = message;
@@ -216,7 +212,7 @@ std::string describe_blow_up(const engine::Simulation& simulation) {
   const auto& blow_up = simulation.blow_up();
   if (!blow_up) return {};
   return "body '" + simulation.bodies()[blow_up->body].name + "' at step " +
-         std::to_string(blow_up->step) + " (t = " + number_text(blow_up->time, "%.9g") +
+         std::to_string(blow_up->step) + " (t = " + printf_number(blow_up->time, "%.9g") +
          " s): " + blow_up->reason;
 }
 
@@ -286,24 +282,24 @@ nlohmann::json summary_to_json(const RunSummary& summary) {
 
 std::string format_summary(const RunSummary& summary) {
   std::ostringstream out;
-  out << summary.scene << ": " << summary.integrator << ", dt " << number_text(summary.dt) << " s, "
+  out << summary.scene << ": " << summary.integrator << ", dt " << printf_number(summary.dt) << " s, "
       << summary.steps << " of " << summary.total_steps
-      << " steps to t = " << number_text(summary.time) << " s"
+      << " steps to t = " << printf_number(summary.time) << " s"
       << (summary.blow_up ? " (blew up)" : "") << "\n";
   const double rate =
       summary.wall_seconds > 0.0 ? static_cast<double>(summary.steps) / summary.wall_seconds : 0.0;
-  out << "  stepping " << number_text(summary.wall_seconds, "%.3g") << " s wall, "
-      << number_text(rate, "%.3g") << " steps/s\n";
+  out << "  stepping " << printf_number(summary.wall_seconds, "%.3g") << " s wall, "
+      << printf_number(rate, "%.3g") << " steps/s\n";
   for (const BodySummary& body : summary.bodies) {
     out << "  body '" << body.name << "'\n";
-    out << "    energy drift   max " << number_text(body.energy_drift_max, "%.3e") << "  final "
-        << number_text(body.energy_drift_final, "%.3e")
+    out << "    energy drift   max " << printf_number(body.energy_drift_max, "%.3e") << "  final "
+        << printf_number(body.energy_drift_final, "%.3e")
         << (body.energy_conserved ? "" : "  (not an invariant here)") << "\n";
-    out << "    |L| drift      max " << number_text(body.momentum_drift_max, "%.3e") << "  final "
-        << number_text(body.momentum_drift_final, "%.3e")
+    out << "    |L| drift      max " << printf_number(body.momentum_drift_max, "%.3e") << "  final "
+        << printf_number(body.momentum_drift_final, "%.3e")
         << (body.momentum_conserved ? "" : "  (not an invariant here: torques)") << "\n";
     if (body.orientation_error) {
-      out << "    orientation error " << number_text(*body.orientation_error, "%.3e")
+      out << "    orientation error " << printf_number(*body.orientation_error, "%.3e")
           << " rad against the exact torque-free solution\n";
     }
   }

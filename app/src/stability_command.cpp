@@ -12,6 +12,7 @@
 #include "app/csv_writer.hpp"
 #include "app/option_lists.hpp"
 #include "app/output_folder.hpp"
+#include "app/printf_number.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -43,11 +44,6 @@ namespace fs = std::filesystem;
 
 constexpr double kReferenceTolerance = 1e-12;
 
-std::string number_text(double value, const char* format = "%.6g") {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, value);
-  return buffer;
-}
 
 /// Splits a comma-separated option value; empty items are errors naming the option.
 std::vector<engine::IntegratorInfo> parse_integrators(const std::optional<std::string>& text) {
@@ -277,7 +273,7 @@ std::string csv_field(const std::string& text) {
 }
 
 std::string optional_number(const std::optional<double>& value) {
-  return value ? number_text(*value, "%.6e") : std::string();
+  return value ? printf_number(*value, "%.6e") : std::string();
 }
 
 constexpr const char* kCsvHeader =
@@ -295,12 +291,12 @@ std::string csv_text(const std::string& suite, const std::vector<StabilityCase>&
                                     [&](const StabilityCase& c) { return c.name == r.case_name; });
     const bool ran = r.outcome != StabilityOutcome::kSkipped;
     const auto invariant = [&](bool applies, double value) {
-      return ran && applies ? number_text(value, "%.6e") : std::string();
+      return ran && applies ? printf_number(value, "%.6e") : std::string();
     };
     const InvariantChanges& ch = r.changes;
     out << csv_field(suite) << "," << csv_field(r.case_name) << "," << r.integrator << ","
-        << number_text(r.dt, "%.9g") << "," << csv_field(found->rate_label) << ","
-        << number_text(r.rate_dt, "%.6g") << "," << number_text(r.duration, "%.9g") << ","
+        << printf_number(r.dt, "%.9g") << "," << csv_field(found->rate_label) << ","
+        << printf_number(r.rate_dt, "%.6g") << "," << printf_number(r.duration, "%.9g") << ","
         << r.steps << "," << r.total_steps << "," << outcome_name(r.outcome) << ","
         << optional_number(r.blowup_time) << "," << csv_field(r.blowup_reason) << ","
         << invariant(ch.energy_applies, ch.energy_final) << ","
@@ -310,7 +306,7 @@ std::string csv_text(const std::string& suite, const std::vector<StabilityCase>&
         << invariant(ch.momentum_applies, ch.momentum_max_gain) << ","
         << invariant(ch.momentum_applies, ch.momentum_max_loss) << ","
         << optional_number(r.orientation_error) << "," << optional_number(r.position_error) << ","
-        << csv_field(ran ? r.reference : "") << "," << number_text(r.wall_seconds, "%.4g") << ","
+        << csv_field(ran ? r.reference : "") << "," << printf_number(r.wall_seconds, "%.4g") << ","
         << csv_field(r.note) << "\n";
   }
   return out.str();
@@ -331,11 +327,11 @@ double decisive_change(const InvariantChanges& ch) {
 std::string cell_text(const RunRecord& r) {
   switch (r.outcome) {
     case StabilityOutcome::kBlewUp:
-      return "blew up (t = " + number_text(*r.blowup_time, "%.4g") + " s)";
+      return "blew up (t = " + printf_number(*r.blowup_time, "%.4g") + " s)";
     case StabilityOutcome::kDamped:
     case StabilityOutcome::kDrifting:
       return std::string(outcome_name(r.outcome)) + " (" +
-             number_text(decisive_change(r.changes), "%+.1e") + ")";
+             printf_number(decisive_change(r.changes), "%+.1e") + ")";
     default:
       return outcome_name(r.outcome);
   }
@@ -374,13 +370,13 @@ std::string markdown_text(const std::string& suite, const std::vector<StabilityC
   std::size_t index = 0;
   for (const StabilityCase& c : cases) {
     out << "## Case `" << c.name << "`\n\n" << c.description << ". Duration "
-        << number_text(c.duration) << " s";
-    if (c.rate > 0.0) out << "; columns are " << c.rate_label << " (rate " << number_text(c.rate)
+        << printf_number(c.duration) << " s";
+    if (c.rate > 0.0) out << "; columns are " << c.rate_label << " (rate " << printf_number(c.rate)
                           << " 1/s)";
     else out << "; columns are dt in s";
     out << ".\n\n| integrator |";
     for (const double dt : c.dts) {
-      out << " " << number_text(c.rate > 0.0 ? c.rate * dt : dt, "%.4g") << " |";
+      out << " " << printf_number(c.rate > 0.0 ? c.rate * dt : dt, "%.4g") << " |";
     }
     out << "\n|---|";
     for (std::size_t k = 0; k < c.dts.size(); ++k) out << "---|";
@@ -454,7 +450,7 @@ int stability(const StabilityOptions& options, std::ostream& out, std::ostream& 
       panel.title = c.name;
       panel.x_label = c.rate > 0.0 ? c.rate_label : "dt (s)";
       for (const double dt : c.dts) {
-        panel.columns.push_back(number_text(c.rate > 0.0 ? c.rate * dt : dt, "%.4g"));
+        panel.columns.push_back(printf_number(c.rate > 0.0 ? c.rate * dt : dt, "%.4g"));
       }
       for (const engine::IntegratorInfo& info : integrators) {
         panel.rows.push_back(info.name);

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "app/inspect_command.hpp"
+#include "app/printf_number.hpp"
 #include "app/viewer_initial_state.hpp"
 #include "engine/input_error.hpp"
 #include "engine/integrators.hpp"
@@ -28,12 +29,6 @@ constexpr double kMaxTimeScale = 64.0;
 /// time): a long stall (a dragged window, a slow step) does not make the physics race after.
 constexpr double kMaxLagWall = 0.25;
 constexpr double kTrailSeconds = 3.0;
-
-std::string number(const char* format, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, value);
-  return buffer;
-}
 
 /// Keeps the newest `length` values.
 void trim(std::vector<float>& values, std::size_t length) {
@@ -368,7 +363,7 @@ render::DrawList Session::frame(const render::Camera& camera) {
   legend.width_px = 300.0f;
   legend.position_px = Eigen::Vector2f(12.0f, static_cast<float>(renderer_.height()) - 140.0f);
   legend.lines.push_back("solid: " + runs_.front().integrator +
-                         ", dt = " + number("%g", runs_.front().dt) + " s");
+                         ", dt = " + printf_number(runs_.front().dt, "%g") + " s");
   ShowSettings bodies_only;
   bodies_only.bodies = show_.bodies;
   bodies_only.angular_velocity = false;
@@ -382,9 +377,9 @@ render::DrawList Session::frame(const render::Camera& camera) {
       list.meshes.push_back(mesh);
     }
     std::string line = std::string(colour.name) + ": " + runs_[k].integrator +
-                       ", dt = " + number("%g", runs_[k].dt) + " s";
+                       ", dt = " + printf_number(runs_[k].dt, "%g") + " s";
     if (const auto& blow_up = runs_[k].simulation->blow_up()) {
-      line += number(" (blew up at t = %.4g s)", blow_up->time);
+      line += printf_number(blow_up->time, " (blew up at t = %.4g s)");
     }
     legend.lines.push_back(std::move(line));
   }
@@ -428,10 +423,10 @@ std::string Session::inspector_text(std::size_t body) const {
   const engine::BodyModel& model = compiled_.bodies[body];
   std::ostringstream text;
   text << model.name << ": inertia given in the scene\n"
-       << "mass              " << number("%.6g", model.mass) << " kg\n"
-       << "principal moments " << number("%.6g", model.moments[0]) << ", "
-       << number("%.6g", model.moments[1]) << ", " << number("%.6g", model.moments[2]) << " kg m^2"
-       << (model.pivoted ? " (about the pivot)" : "") << "\n";
+       << "mass              " << printf_number(model.mass, "%.6g") << " kg\n"
+       << "principal moments " << printf_number(model.moments[0], "%.6g") << ", "
+       << printf_number(model.moments[1], "%.6g") << ", " << printf_number(model.moments[2], "%.6g")
+       << " kg m^2" << (model.pivoted ? " (about the pivot)" : "") << "\n";
   return text.str();
 }
 
