@@ -86,10 +86,12 @@ Eigen::Vector3d rotation_centre(const engine::BodyModel& body, const engine::Bod
   return state.position - state.orientation * body.center_offset;
 }
 
-/// The drawn geometry of a body in its body frame: its mesh, or the uniform box with its mass
-/// and moments about the centre of mass, turned from its principal axes into the body frame.
-engine::TriangleMesh body_geometry(const engine::BodyModel& body,
-                                   const std::optional<engine::TriangleMesh>& mesh) {
+/// The drawn geometry of a body in its body frame: its mesh, or (made in `box`) the uniform
+/// box with its mass and moments about the centre of mass, turned from its principal axes into
+/// the body frame.
+const engine::TriangleMesh& body_geometry(const engine::BodyModel& body,
+                                          const std::optional<engine::TriangleMesh>& mesh,
+                                          engine::TriangleMesh& box) {
   if (mesh) return *mesh;
   // Moments about the centre of mass (parallel axes back from the rotation centre).
   const Eigen::Vector3d c = body.center_offset;
@@ -103,7 +105,7 @@ engine::TriangleMesh body_geometry(const engine::BodyModel& body,
     moments = frame.moments;
     axes = frame.axes;
   }
-  engine::TriangleMesh box = engine::box_mesh(equivalent_box_size(body.mass, moments));
+  box = engine::box_mesh(equivalent_box_size(body.mass, moments));
   engine::transform_mesh(box, body.principal_to_body.toRotationMatrix() * axes,
                          Eigen::Vector3d::Zero());
   return box;
@@ -143,7 +145,8 @@ struct FrameBuilder::Impl {
   std::vector<std::vector<Eigen::Vector3d>> polhode;     ///< per body: w (principal frame)
   std::vector<std::vector<Eigen::Vector3d>> trails;      ///< per trail: world points
 
-  void frame_the_run(const CompiledScene& scene);
+  void frame_the_run(const CompiledScene& scene,
+                     const std::vector<const engine::TriangleMesh*>& geometry);
   /// Number of observed frames at or before `time`.
   std::size_t history_end(double time) const {
     return static_cast<std::size_t>(std::upper_bound(times.begin(), times.end(), time) -
@@ -185,13 +188,17 @@ FrameBuilder::FrameBuilder(const SceneDescription& description, const CompiledSc
   impl.settings = settings;
   impl.title = description.name;
 
-  // Meshes, colours and arrow scales, fixed for the whole run.
+  // Meshes, colours and arrow scales, fixed for the whole run. The drawn geometry (a mesh of the
+  // scene, or a box made here) also bounds the motion below.
+  const std::optional<engine::TriangleMesh> none;
+  std::vector<engine::TriangleMesh> boxes(scene.bodies.size());
+  std::vector<const engine::TriangleMesh*> geometries;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const engine::BodyModel& body = scene.bodies[i];
     const engine::BodyState& state = scene.initial[i];
-    const std::optional<engine::TriangleMesh> none;
-    const engine::TriangleMesh geometry =
-        body_geometry(body, i < scene.geometry.size() ? scene.geometry[i] : none);
+    const engine::TriangleMesh& geometry =
+        body_geometry(body, i < scene.geometry.size() ? scene.geometry[i] : none, boxes[i]);
+    geometries.push_back(&geometry);
     BodyLook look;
     look.mesh = renderer.upload(detail::shaded_mesh_data(geometry, 35.0));
     look.colour = kBodyPalette[i % kBodyPalette.size()];
@@ -233,10 +240,11 @@ FrameBuilder::FrameBuilder(const SceneDescription& description, const CompiledSc
     impl.torque_free = impl.torque_free && body.torque_free();
   }
 
-  impl.frame_the_run(scene);
+  impl.frame_the_run(scene, geometries);
 }
 
-void FrameBuilder::Impl::frame_the_run(const CompiledScene& scene) {
+void FrameBuilder::Impl::frame_the_run(const CompiledScene& scene,
+                                       const std::vector<const engine::TriangleMesh*>& geometry) {
   const ShowSettings& show = settings.show;
   const double duration = scene.settings.duration;
   std::vector<detail::Sphere> spheres;
@@ -268,10 +276,8 @@ void FrameBuilder::Impl::frame_the_run(const CompiledScene& scene) {
     if (show.body_axes) reach = std::max(reach, kAxisLength * look.radius);
 
     // Where the body goes, in closed form.
-    const std::optional<engine::TriangleMesh> none;
-    const detail::MotionBound motion = detail::motion_bound(
-        body, state, body_geometry(body, i < scene.geometry.size() ? scene.geometry[i] : none),
-        duration, look.radius, reach, arrows);
+    const detail::MotionBound motion =
+        detail::motion_bound(body, state, *geometry[i], duration, look.radius, reach, arrows);
     spheres.insert(spheres.end(), motion.spheres.begin(), motion.spheres.end());
     ground_height = std::min(ground_height, motion.lowest);
     const detail::Sphere body_bound = motion.body;
