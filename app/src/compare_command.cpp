@@ -190,7 +190,7 @@ int compare_scene(const CompareOptions& options, const InterruptGuard& guard, st
     }
   }
   std::unique_ptr<render::ImageSink> sink =
-      open_render_output(run_options(options, integrators.front()), frame_settings, range.first);
+      open_render_output(options, frame_settings, range.first);
 
   // One renderer (tile- or frame-sized) shared by every run's job.
   const int renderer_width = layout == CompareLayout::kGrid ? grid.tile_width : frame_settings.width;

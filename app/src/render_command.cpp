@@ -192,7 +192,7 @@ void InterruptGuard::install(int signal, struct sigaction& old, bool& installed)
 
 // H.264 and VP9 in yuv420p need even sides; that is checked here so the message says what to
 // change rather than quoting the encoder.
-std::unique_ptr<render::ImageSink> open_render_output(const RenderOptions& options,
+std::unique_ptr<render::ImageSink> open_render_output(const VideoOptions& options,
                                                       const RenderSettings& settings,
                                                       std::size_t first_frame) {
   render::SinkKind kind{};

@@ -139,7 +139,7 @@ class RenderJob {
 /// Opens the output of `options` (its name and --size) for frames of `settings`' size before
 /// anything is rendered; videos need even sides. Throws engine::InputError (unknown kind, odd
 /// sides) or std::runtime_error (filesystem, ffmpeg), naming the path.
-std::unique_ptr<render::ImageSink> open_render_output(const RenderOptions& options,
+std::unique_ptr<render::ImageSink> open_render_output(const VideoOptions& options,
                                                       const RenderSettings& settings,
                                                       std::size_t first_frame);
 
