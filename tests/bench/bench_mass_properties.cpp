@@ -18,7 +18,7 @@
 #include <filesystem>
 #include <random>
 
-#include "app/inspect_command.hpp"
+#include "app/scene/mesh_inspection.hpp"
 #include "engine/mass_properties.hpp"
 #include "engine/mesh_analysis.hpp"
 #include "engine/mesh_import.hpp"

@@ -13,7 +13,7 @@
 #include <sstream>
 #include <string>
 
-#include "app/render_command.hpp"
+#include "app/commands/render_command.hpp"
 #include "render/image_sink.hpp"
 
 namespace {

@@ -9,8 +9,8 @@
 
 #include <filesystem>
 
-#include "app/viewer.hpp"
-#include "app/viewer_panels.hpp"
+#include "app/viewer/viewer.hpp"
+#include "app/viewer/viewer_panels.hpp"
 #include "render/imgui_layer.hpp"
 #include "render/renderer.hpp"
 

@@ -1,0 +1,63 @@
+#pragma once
+// The outputs of `tumble bench`: results.csv, the work-precision plots and report.md.
+
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/analysis/bench_runner.hpp"
+
+namespace tumble::app {
+
+/// Everything the outputs are made from.
+struct BenchOutcome {
+  std::vector<BenchScene> scenes;
+  std::vector<BenchCase> cases;
+  std::vector<CaseResult> results;  ///< one per case
+  int repeat = 0;
+  std::size_t workers = 0;           ///< worker threads, one pinned core each
+  std::vector<int> cores_used;
+  std::size_t cores_available = 0;
+};
+
+/// The columns of results.csv, in order.
+const std::vector<std::string>& results_columns();
+
+/// Writes results.csv: a header, then one row per case (17 significant digits; the error
+/// columns are empty for blown-up runs).
+void write_results_csv(const BenchOutcome& outcome, const std::filesystem::path& file);
+
+/// An error measure plotted per scene: column name, file suffix, axis label.
+struct ErrorMeasure {
+  std::string suffix;  ///< in the plot file name: <scene>_<suffix>.png
+  std::string label;
+  double ErrorFigures::*field;
+};
+const std::vector<ErrorMeasure>& plotted_measures();
+
+/// Draws DIR/<scene>_<measure>.{png,svg} for every scene and measure (gnuplot).
+void write_plots(const BenchOutcome& outcome, const std::filesystem::path& dir);
+
+/// The observed order of one integrator on one scene.
+struct OrderFit {
+  std::optional<double> slope;  ///< of log error against log dt (log tolerance for dopri)
+  std::size_t used = 0;         ///< runs in the fit
+  std::size_t dropped = 0;      ///< blown up, at the rounding floor or saturated
+};
+
+/// Errors at or below this are at the rounding floor (the order fit drops them), rad.
+inline constexpr double kRoundingFloor = 1e-11;
+/// Orientation errors above this are out of the asymptotic range (the order fit drops them).
+inline constexpr double kSaturation = 0.5;
+
+/// Least-squares slope of log(final orientation error) against log(dt) over the runs of
+/// `integrator` on `scene` that lie in the asymptotic range.
+OrderFit observed_order(const BenchOutcome& outcome, std::size_t scene,
+                        const std::string& integrator);
+
+/// Writes report.md.
+void write_report(const BenchOutcome& outcome, const std::filesystem::path& file);
+
+}  // namespace tumble::app

@@ -1,0 +1,319 @@
+#include "app/analysis/bench_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "app/analysis/gnuplot.hpp"
+
+namespace tumble::app {
+namespace {
+
+std::string number(double value, const char* format = "%.17g") {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, format, value);
+  return buffer;
+}
+
+std::string csv_text(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + "\"";
+}
+
+/// The integrators of a scene's cases, in order of first appearance.
+std::vector<std::string> integrators_of(const BenchOutcome& outcome, std::size_t scene) {
+  std::vector<std::string> names;
+  for (const BenchCase& c : outcome.cases) {
+    if (c.scene == scene && std::find(names.begin(), names.end(), c.integrator) == names.end()) {
+      names.push_back(c.integrator);
+    }
+  }
+  return names;
+}
+
+/// "dt 0.01" or "tol 1e-08".
+std::string step_text(const BenchCase& c) {
+  return c.tolerance ? "tol " + number(*c.tolerance, "%.3g") : "dt " + number(c.dt, "%.4g");
+}
+
+void ensure_written(std::ofstream& out, const std::filesystem::path& file) {
+  if (!out.flush()) throw std::runtime_error("cannot write " + file.string());
+}
+
+}  // namespace
+
+const std::vector<std::string>& results_columns() {
+  static const std::vector<std::string> columns = {
+      "scene", "scene_file", "integrator", "order", "adaptive", "dt", "tolerance", "duration",
+      "steps", "total_steps", "blew_up", "blow_up_time", "blow_up_reason", "repeats",
+      "seconds_median", "seconds_min", "seconds_max", "ns_per_step", "core", "samples",
+      "orientation_error_final", "orientation_error_max", "omega_error_final", "omega_error_max",
+      "momentum_error_final", "momentum_error_max", "energy_drift_max", "momentum_norm_drift_max"};
+  return columns;
+}
+
+void write_results_csv(const BenchOutcome& outcome, const std::filesystem::path& file) {
+  std::ofstream out(file);
+  for (std::size_t i = 0; i < results_columns().size(); ++i) {
+    out << (i ? "," : "") << results_columns()[i];
+  }
+  out << "\n";
+  for (std::size_t i = 0; i < outcome.cases.size(); ++i) {
+    const BenchCase& c = outcome.cases[i];
+    const CaseResult& r = outcome.results[i];
+    const BenchScene& scene = outcome.scenes[c.scene];
+    const auto [low, high] = std::minmax_element(r.seconds.begin(), r.seconds.end());
+    const bool blew_up = r.blow_up_time.has_value();
+    out << csv_text(scene.label) << "," << csv_text(scene.file.string()) << "," << c.integrator
+        << "," << c.order << "," << (c.adaptive ? 1 : 0) << "," << number(c.dt) << ","
+        << (c.tolerance ? number(*c.tolerance) : "") << "," << number(scene.settings.duration)
+        << "," << r.steps << "," << r.total_steps << "," << (blew_up ? 1 : 0) << ","
+        << (blew_up ? number(*r.blow_up_time) : "") << "," << csv_text(r.blow_up_reason) << ","
+        << r.seconds.size() << "," << number(r.median_seconds) << ","
+        << (low != r.seconds.end() ? number(*low) : "") << ","
+        << (high != r.seconds.end() ? number(*high) : "") << ","
+        << number(r.steps ? 1e9 * r.median_seconds / static_cast<double>(r.steps) : 0.0) << ","
+        << r.core << "," << r.errors.samples;
+    const ErrorFigures& e = r.errors;
+    for (double value : {e.orientation_final, e.orientation_max, e.omega_final, e.omega_max,
+                         e.momentum_final, e.momentum_max, e.energy_drift_max,
+                         e.momentum_norm_drift_max}) {
+      out << "," << (blew_up ? "" : number(value));
+    }
+    out << "\n";
+  }
+  ensure_written(out, file);
+}
+
+const std::vector<ErrorMeasure>& plotted_measures() {
+  static const std::vector<ErrorMeasure> measures = {
+      {"orientation_final", "final orientation error (rad)", &ErrorFigures::orientation_final},
+      {"orientation_max", "max orientation error (rad)", &ErrorFigures::orientation_max},
+      {"omega_max", "max relative error of world omega", &ErrorFigures::omega_max},
+      {"momentum_max", "max relative error of world L", &ErrorFigures::momentum_max},
+      {"energy_drift", "max relative energy drift", &ErrorFigures::energy_drift_max},
+      {"momentum_norm_drift", "max relative |L| drift", &ErrorFigures::momentum_norm_drift_max},
+  };
+  return measures;
+}
+
+void write_plots(const BenchOutcome& outcome, const std::filesystem::path& dir) {
+  std::vector<LogLogPlot> plots;
+  for (std::size_t s = 0; s < outcome.scenes.size(); ++s) {
+    const BenchScene& scene = outcome.scenes[s];
+    for (const ErrorMeasure& measure : plotted_measures()) {
+      LogLogPlot plot;
+      plot.file_stem = dir / (scene.label + "_" + measure.suffix);
+      plot.title = scene.name + ": " + measure.label + " against run time";
+      plot.x_label = "run time of the stepping loop (s, median)";
+      plot.y_label = measure.label;
+      // One line per integrator, its runs ordered by run time; blow-ups are left out.
+      for (const std::string& name : integrators_of(outcome, s)) {
+        PlotSeries series{name, {}};
+        for (std::size_t i = 0; i < outcome.cases.size(); ++i) {
+          const BenchCase& c = outcome.cases[i];
+          const CaseResult& r = outcome.results[i];
+          if (c.scene != s || c.integrator != name || r.blow_up_time) continue;
+          series.points.emplace_back(r.median_seconds, r.errors.*measure.field);
+        }
+        std::sort(series.points.begin(), series.points.end());
+        plot.series.push_back(std::move(series));
+      }
+      plots.push_back(std::move(plot));
+    }
+  }
+  draw_plots(plots, dir / "plots.gnuplot");
+}
+
+OrderFit observed_order(const BenchOutcome& outcome, std::size_t scene,
+                        const std::string& integrator) {
+  // Points (log step, log error) in the asymptotic range.
+  OrderFit fit;
+  std::vector<std::pair<double, double>> points;
+  std::vector<std::pair<double, double>> saturated;
+  for (std::size_t i = 0; i < outcome.cases.size(); ++i) {
+    const BenchCase& c = outcome.cases[i];
+    if (c.scene != scene || c.integrator != integrator) continue;
+    const CaseResult& r = outcome.results[i];
+    const double error = r.errors.orientation_final;
+    const std::pair<double, double> point{std::log(c.tolerance ? *c.tolerance : c.dt),
+                                          std::log(error)};
+    if (r.blow_up_time || !(error > kRoundingFloor)) {
+      ++fit.dropped;
+    } else if (!(error < kSaturation)) {
+      saturated.push_back(point);
+    } else {
+      points.push_back(point);
+    }
+  }
+  // Saturated runs are out of the asymptotic range, unless every run is: then the integrator
+  // does not converge on this sweep, and the fit over them all shows it (a slope near 0).
+  if (points.empty()) {
+    points = saturated;
+  } else {
+    fit.dropped += saturated.size();
+  }
+  fit.used = points.size();
+  if (points.size() < 2) return fit;
+  // Least squares slope.
+  double mx = 0.0, my = 0.0;
+  for (const auto& [x, y] : points) {
+    mx += x;
+    my += y;
+  }
+  mx /= static_cast<double>(points.size());
+  my /= static_cast<double>(points.size());
+  double sxx = 0.0, sxy = 0.0;
+  for (const auto& [x, y] : points) {
+    sxx += (x - mx) * (x - mx);
+    sxy += (x - mx) * (y - my);
+  }
+  if (sxx > 0.0) fit.slope = sxy / sxx;
+  return fit;
+}
+
+namespace {
+
+/// The scene's section of the report.
+void scene_section(std::ostream& out, const BenchOutcome& outcome, std::size_t s) {
+  const BenchScene& scene = outcome.scenes[s];
+  out << "## " << scene.name << " (`" << scene.file.string() << "`)\n\n"
+      << "- duration " << number(scene.settings.duration, "%.6g") << " s; sampling grid every "
+      << number(scene.grid.interval, "%.6g") << " s (" << scene.grid.count() << " samples)\n"
+      << "- reference: " << scene.reference.description << "\n";
+  double smallest = INFINITY;
+  for (std::size_t i = 0; i < outcome.cases.size(); ++i) {
+    const CaseResult& r = outcome.results[i];
+    if (outcome.cases[i].scene == s && !r.blow_up_time && r.errors.orientation_final > 0.0) {
+      smallest = std::min(smallest, r.errors.orientation_final);
+    }
+  }
+  if (const auto& check = scene.reference.check) {
+    out << "- reference check (dopri 1e-13 against 1e-12): orientation "
+        << number(check->orientation, "%.2e") << " rad, world omega "
+        << number(check->omega, "%.2e") << ", world L " << number(check->momentum, "%.2e")
+        << " (relative)\n";
+    if (std::isfinite(smallest) && check->orientation > 0.1 * smallest) {
+      out << "- **warning**: the two references disagree by more than a tenth of the smallest "
+             "final orientation error measured ("
+          << number(smallest, "%.2e") << " rad): errors near that level are not resolved\n";
+    }
+  }
+  out << "- invariants: energy " << (scene.conservative ? "is" : "is **not**") << ", |L| "
+      << (scene.torque_free ? "is" : "is **not**")
+      << " an invariant here (a drift of a non-invariant is not an error)\n\n";
+
+  // The table of runs.
+  out << "| integrator | step | steps | time (s) | ns/step | orient. final (rad) | orient. max "
+         "(rad) | omega max | L max | energy drift | abs(L) drift |\n"
+      << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (std::size_t i = 0; i < outcome.cases.size(); ++i) {
+    const BenchCase& c = outcome.cases[i];
+    if (c.scene != s) continue;
+    const CaseResult& r = outcome.results[i];
+    const double per_step = r.steps ? 1e9 * r.median_seconds / static_cast<double>(r.steps) : 0;
+    out << "| " << c.integrator << " | " << step_text(c) << " | " << r.steps << " | "
+        << number(r.median_seconds, "%.3g") << " | " << number(per_step, "%.0f") << " | ";
+    if (r.blow_up_time) {
+      out << "blew up at t = " << number(*r.blow_up_time, "%.4g") << " s (" << r.blow_up_reason
+          << ") | | | | | |\n";
+      continue;
+    }
+    const ErrorFigures& e = r.errors;
+    out << number(e.orientation_final, "%.2e") << " | " << number(e.orientation_max, "%.2e")
+        << " | " << number(e.omega_max, "%.2e") << " | " << number(e.momentum_max, "%.2e")
+        << " | " << number(e.energy_drift_max, "%.2e") << " | "
+        << number(e.momentum_norm_drift_max, "%.2e") << " |\n";
+  }
+
+  // Observed orders.
+  out << "\n### Observed order\n\nLeast-squares slope of log(final orientation error) against "
+         "log(dt) (dopri: against log(tolerance)), over the runs with an error between "
+      << number(kRoundingFloor, "%.0e") << " and " << number(kSaturation, "%.2g")
+      << " rad that did not blow up (when every run is above "
+      << number(kSaturation, "%.2g")
+      << " rad the integrator does not converge here, and all its runs are fitted). n/a: fewer "
+         "than two runs left, e.g. an integrator exact for this problem (free-rotor without "
+         "torques) sits at the rounding floor.\n\n| integrator | nominal order | observed | runs used | "
+         "runs dropped |\n|---|---:|---:|---:|---:|\n";
+  for (const std::string& name : integrators_of(outcome, s)) {
+    const auto it = std::find_if(outcome.cases.begin(), outcome.cases.end(),
+                                 [&](const BenchCase& c) { return c.integrator == name; });
+    const OrderFit fit = observed_order(outcome, s, name);
+    out << "| " << name << " | " << it->order << (it->adaptive ? " (per tolerance: 1)" : "")
+        << " | " << (fit.slope ? number(*fit.slope, "%.2f") : "n/a") << " | " << fit.used
+        << " | " << fit.dropped << " |\n";
+  }
+
+  // Fastest integrator per accuracy level.
+  out << "\n### Fastest to each accuracy (final orientation error)\n\n"
+         "| accuracy (rad) | integrator | step | time (s) | error (rad) |\n|---|---|---|---:|---:|\n";
+  for (double level : {1e-2, 1e-4, 1e-6, 1e-8, 1e-10}) {
+    std::optional<std::size_t> best;
+    for (std::size_t i = 0; i < outcome.cases.size(); ++i) {
+      const CaseResult& r = outcome.results[i];
+      if (outcome.cases[i].scene != s || r.blow_up_time || !(r.errors.orientation_final <= level))
+        continue;
+      if (!best || r.median_seconds < outcome.results[*best].median_seconds) best = i;
+    }
+    out << "| " << number(level, "%.0e") << " | ";
+    if (!best) {
+      out << "none reached it | | | |\n";
+      continue;
+    }
+    const BenchCase& c = outcome.cases[*best];
+    const CaseResult& r = outcome.results[*best];
+    out << c.integrator << " | " << step_text(c) << " | " << number(r.median_seconds, "%.3g")
+        << " | " << number(r.errors.orientation_final, "%.2e") << " |\n";
+  }
+
+  // Plots.
+  out << "\n### Work-precision diagrams\n\n";
+  for (const ErrorMeasure& measure : plotted_measures()) {
+    const std::string stem = scene.label + "_" + measure.suffix;
+    out << "- " << measure.label << ": [" << stem << ".svg](" << stem << ".svg)\n\n  ![" << stem
+        << "](" << stem << ".png)\n";
+  }
+  out << "\n";
+}
+
+}  // namespace
+
+void write_report(const BenchOutcome& outcome, const std::filesystem::path& file) {
+  std::ofstream out(file);
+  out << "# tumble bench\n\n"
+      << "Error against run time. Each case: one measured run (errors sampled on the scene's "
+         "grid), used as the warm-up, then "
+      << outcome.repeat
+      << " timed runs of the stepping loop alone (Simulation::step; no sampling, no output); "
+         "the time is their median.\n\n"
+      << "Ran on " << outcome.workers << " worker" << (outcome.workers == 1 ? "" : "s")
+      << ", each pinned to its own core (cores";
+  for (int core : outcome.cores_used) out << " " << core;
+  out << " of " << outcome.cores_available
+      << " available), so no two timed loops shared a core.\n\n"
+      << "Errors are sampled at every multiple of the sampling interval (the largest step of "
+         "the sweep; every swept step divides it) and at the end, the same instants for every "
+         "run of a scene; each figure is the maximum over the scene's bodies. Orientation: "
+         "geodesic angle 2 atan2(|vec(q_ref* q)|, |w(q_ref* q)|). omega, L: |x - x_ref| / "
+         "|x_ref| in world axes. Drifts: max |E - E0| / |E0| and max ||L| - |L0|| / |L0|. "
+         "Runs that blew up have no error figures; the time of the blow-up is given.\n\n"
+      << "All figures are in `results.csv`, one row per run, columns: ";
+  for (std::size_t i = 0; i < results_columns().size(); ++i) {
+    out << (i ? ", " : "") << "`" << results_columns()[i] << "`";
+  }
+  out << " (times in s, errors in rad or relative, empty when the run blew up).\n\n";
+  for (std::size_t s = 0; s < outcome.scenes.size(); ++s) scene_section(out, outcome, s);
+  ensure_written(out, file);
+}
+
+}  // namespace tumble::app

@@ -1,0 +1,136 @@
+#include "app/analysis/bench_runner.hpp"
+
+#include <pthread.h>
+#include <sched.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+namespace tumble::app {
+namespace {
+
+engine::Simulation make_simulation(const BenchScene& scene, const BenchCase& c) {
+  engine::SimulationSettings settings = scene.settings;
+  settings.integrator = c.kind;
+  settings.dt = c.dt;
+  if (c.tolerance) settings.tolerance = *c.tolerance;
+  return engine::Simulation(scene.bodies, scene.initial, settings);
+}
+
+/// Pins the calling thread to `core`; false when the system refuses.
+bool pin_to_core(int core) {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  CPU_SET(core, &set);
+  return pthread_setaffinity_np(pthread_self(), sizeof set, &set) == 0;
+}
+
+}  // namespace
+
+CaseResult run_case(const BenchScene& scene, const BenchCase& c, int repeat) {
+  CaseResult result;
+
+  // The measured run: errors at every grid sample (every `ratio`-th step and the last).
+  {
+    engine::Simulation simulation = make_simulation(scene, c);
+    result.total_steps = simulation.total_steps();
+    // Fixed steps divide the sampling interval (`ratio` steps per sample); adaptive runs take
+    // an output step of `stride` samples, so that their tolerance, not the output step, caps
+    // their step size.
+    const double interval = scene.grid.interval;
+    const auto ratio = static_cast<std::size_t>(std::max(1LL, std::llround(interval / c.dt)));
+    const auto stride = static_cast<std::size_t>(std::max(1LL, std::llround(c.dt / interval)));
+    ErrorMeter meter(scene.bodies, scene.initial, scene.reference);
+    const std::size_t samples = scene.grid.count();
+    while (simulation.step()) {
+      const std::size_t k = simulation.steps() * stride / ratio;
+      if (simulation.finished()) {
+        meter.observe(samples, simulation.states());
+      } else if (simulation.steps() % ratio == 0 && k < samples) {
+        meter.observe(k, simulation.states());
+      }
+    }
+    result.steps = simulation.steps();
+    if (const auto& blow_up = simulation.blow_up()) {
+      result.blow_up_time = blow_up->time;
+      result.blow_up_reason = blow_up->reason;
+    } else {
+      result.errors = meter.figures();
+    }
+  }
+
+  // The timed runs: the stepping loop alone (the measured run above was the warm-up).
+  for (int run = 0; run < repeat; ++run) {
+    engine::Simulation simulation = make_simulation(scene, c);
+    const auto start = std::chrono::steady_clock::now();
+    while (simulation.step()) {
+    }
+    const auto stop = std::chrono::steady_clock::now();
+    result.seconds.push_back(std::chrono::duration<double>(stop - start).count());
+  }
+  std::vector<double> sorted = result.seconds;
+  std::sort(sorted.begin(), sorted.end());
+  const std::size_t n = sorted.size();
+  result.median_seconds = n % 2 == 1 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+  return result;
+}
+
+std::vector<int> available_cores() {
+  std::vector<int> cores;
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) == 0) {
+    for (int core = 0; core < CPU_SETSIZE; ++core) {
+      if (CPU_ISSET(core, &set)) cores.push_back(core);
+    }
+  }
+  if (cores.empty()) cores.push_back(0);
+  return cores;
+}
+
+std::vector<CaseResult> run_cases(
+    const std::vector<BenchScene>& scenes, const std::vector<BenchCase>& cases, int repeat,
+    std::size_t workers,
+    const std::function<void(std::size_t, const CaseResult&, std::size_t)>& done) {
+  const std::vector<int> cores = available_cores();
+  workers = std::clamp<std::size_t>(workers, 1, cores.size());
+  std::vector<CaseResult> results(cases.size());
+  std::atomic<std::size_t> next{0};
+  std::mutex report;
+  std::size_t finished = 0;
+  std::exception_ptr failure;
+
+  // Each worker takes the next case until none is left, on its own core.
+  const auto work = [&](std::size_t worker) {
+    const int core = cores[worker];
+    const bool pinned = pin_to_core(core);
+    for (std::size_t i = next++; i < cases.size(); i = next++) {
+      CaseResult result;
+      try {
+        result = run_case(scenes[cases[i].scene], cases[i], repeat);
+      } catch (...) {  // e.g. an integrator refusing a body: stop everyone, rethrow after join
+        const std::lock_guard lock(report);
+        if (!failure) failure = std::current_exception();
+        next = cases.size();
+        return;
+      }
+      result.core = pinned ? core : -1;
+      const std::lock_guard lock(report);
+      results[i] = std::move(result);
+      ++finished;
+      if (done) done(i, results[i], finished);
+    }
+  };
+  std::vector<std::thread> threads;
+  for (std::size_t w = 0; w < workers; ++w) threads.emplace_back(work, w);
+  for (std::thread& thread : threads) thread.join();
+  if (failure) std::rethrow_exception(failure);
+  return results;
+}
+
+}  // namespace tumble::app

@@ -1,0 +1,306 @@
+// `tumble bench`: options, validation, the output directory and the run of every case.
+#include "app/commands/bench_command.hpp"
+
+#include "app/scene/option_lists.hpp"
+#include "app/support/output_folder.hpp"
+#include "app/support/printf_number.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <functional>
+#include <iostream>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <ostream>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include <CLI/CLI.hpp>
+
+#include "app/commands/exit_status.hpp"
+
+#include "app/scene/scene.hpp"
+#include "app/analysis/bench_report.hpp"
+#include "app/analysis/bench_runner.hpp"
+#include "engine/input_error.hpp"
+#include "engine/integrators.hpp"
+#include "app/analysis/gnuplot.hpp"
+#include "app/support/progress_bar.hpp"
+
+namespace tumble::app {
+namespace {
+
+using engine::InputError;
+
+/// Adaptive runs are sampled about this many times (their output step caps their step size).
+constexpr std::size_t kAdaptiveSamples = 10;
+
+
+/// A whole number in [minimum, ...] or an error naming the option.
+long long parse_count(const std::string& text, const char* option, long long minimum) {
+  std::size_t used = 0;
+  long long value = 0;
+  try {
+    value = std::stoll(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || value < minimum) {
+    throw InputError(std::string(option) + ": expected a whole number >= " +
+                     std::to_string(minimum) + ", got '" + text + "'");
+  }
+  return value;
+}
+
+/// A list of positive numbers, largest first, each once.
+std::vector<double> descending_positive_list(const std::string& text, const char* option) {
+  std::vector<double> values = parse_positive_list(text, option);
+  std::sort(values.begin(), values.end(), std::greater<>());
+  values.erase(std::unique(values.begin(), values.end()), values.end());
+  return values;
+}
+
+/// The integrators to run: the list given, or every one but the exact solution.
+std::vector<const engine::IntegratorInfo*> chosen_integrators(const BenchOptions& options) {
+  std::vector<const engine::IntegratorInfo*> chosen;
+  if (!options.integrators) {
+    for (const auto& info : engine::integrator_catalog()) {
+      if (info.kind != engine::IntegratorKind::kExact) chosen.push_back(&info);
+    }
+    return chosen;
+  }
+  chosen = parse_integrator_list(*options.integrators, "--integrators");
+  for (const engine::IntegratorInfo* info : chosen) {
+    if (info->kind == engine::IntegratorKind::kExact) {
+      throw InputError("--integrators: 'exact' is the reference, not a benchmarked integrator");
+    }
+  }
+  if (chosen.empty()) throw InputError("--integrators: expected a non-empty list");
+  return chosen;
+}
+
+/// A file-name-safe label from the scene file's stem, unique among `taken`.
+std::string scene_label(const std::filesystem::path& file, std::set<std::string>& taken) {
+  std::string label = file.stem().string();
+  for (char& c : label) {
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
+  }
+  if (label.empty()) label = "scene";
+  std::string unique = label;
+  for (int n = 2; taken.count(unique); ++n) unique = label + "-" + std::to_string(n);
+  taken.insert(unique);
+  return unique;
+}
+
+/// Loads the scenes and lays out every case (no reference yet). Throws InputError.
+void plan(const BenchOptions& options, std::vector<BenchScene>& scenes,
+          std::vector<BenchCase>& cases) {
+  if (options.scenes.empty()) throw InputError("at least one SCENE file is required");
+  if (options.output.empty()) throw InputError("-o DIR is required");
+  const auto integrators = chosen_integrators(options);
+  const bool any_fixed = std::any_of(integrators.begin(), integrators.end(),
+                                     [](const auto* info) { return !info->adaptive; });
+  const bool any_adaptive = std::any_of(integrators.begin(), integrators.end(),
+                                        [](const auto* info) { return info->adaptive; });
+  if (options.dts && !any_fixed) {
+    throw InputError("--dts: no fixed-step integrator chosen (adaptive ones take --tolerances)");
+  }
+  if (options.tolerances && !any_adaptive) {
+    throw InputError("--tolerances: no adaptive integrator chosen (only dopri takes one)");
+  }
+  std::optional<std::vector<double>> dts;
+  if (options.dts) dts = descending_positive_list(*options.dts, "--dts");
+  std::vector<double> tolerances(std::begin(kDefaultTolerances), std::end(kDefaultTolerances));
+  if (options.tolerances) tolerances = descending_positive_list(*options.tolerances, "--tolerances");
+  std::optional<double> duration;
+  if (options.duration) {
+    const std::vector<double> values = parse_positive_list(*options.duration, "--duration");
+    if (values.size() != 1) {
+      throw InputError("--duration: expected one positive number, got '" + *options.duration + "'");
+    }
+    duration = values.front();
+  }
+
+  std::set<std::string> labels;
+  for (const std::filesystem::path& file : options.scenes) {
+    SceneDescription description = load_scene(file);
+    if (duration) description.duration = *duration;
+    // The sweep: the given steps, or the default factors of the scene's dt that fit.
+    std::vector<double> steps;
+    if (dts) {
+      steps = *dts;
+      for (double dt : steps) {
+        if (auto problem = step_problem(dt, description.duration)) {
+          throw InputError("--dts: " + printf_number(dt) + ": " + *problem);
+        }
+      }
+    } else {
+      for (double factor : kDefaultStepFactors) {
+        const double dt = description.dt * factor;
+        if (!step_problem(dt, description.duration)) steps.push_back(dt);
+      }
+      if (steps.empty()) throw InputError(file.string() + ": dt: longer than the duration");
+    }
+    // The sampling interval is the largest step; every step must divide it.
+    const double interval = any_fixed ? steps.front() : description.dt;
+    for (double dt : steps) {
+      const double ratio = interval / dt;
+      if (std::abs(ratio - std::round(ratio)) > 1e-9 * ratio) {
+        throw InputError("--dts: " + printf_number(dt) + " does not divide the largest step " +
+                         printf_number(interval) + " (the errors are sampled on its grid)");
+      }
+    }
+
+    CompiledScene compiled = compile_scene(description);
+    BenchScene scene;
+    scene.file = file;
+    scene.name = description.name;
+    scene.label = scene_label(file, labels);
+    scene.settings = compiled.settings;
+    scene.grid = {interval, description.duration};
+    scene.torque_free = std::all_of(compiled.bodies.begin(), compiled.bodies.end(),
+                                    [](const auto& body) { return body.torque_free(); });
+    scene.conservative = std::all_of(compiled.bodies.begin(), compiled.bodies.end(),
+                                     [](const auto& body) { return body.conservative(); });
+    scene.bodies = std::move(compiled.bodies);
+    scene.initial = std::move(compiled.initial);
+    scenes.push_back(std::move(scene));
+
+    // Cases: fixed-step integrators over the steps, adaptive ones over the tolerances.
+    for (const auto* info : integrators) {
+      BenchCase c;
+      c.scene = scenes.size() - 1;
+      c.integrator = info->name;
+      c.kind = info->kind;
+      c.order = info->order;
+      c.adaptive = info->adaptive;
+      if (info->adaptive) {
+        // About kAdaptiveSamples samples: an output step of a whole number of intervals.
+        const std::size_t count = scenes.back().grid.count();
+        c.dt = interval * static_cast<double>(std::max<std::size_t>(1, count / kAdaptiveSamples));
+        for (double tolerance : tolerances) {
+          c.tolerance = tolerance;
+          cases.push_back(c);
+        }
+      } else {
+        for (double dt : steps) {
+          c.dt = dt;
+          cases.push_back(c);
+        }
+      }
+    }
+  }
+}
+
+/// A bench output: report.md under its title, beside results.csv.
+const OutputFolderKind kBenchOutput{"bench", "report.md", "# tumble bench", "results.csv"};
+
+std::string case_line(const BenchScene& scene, const BenchCase& c, const CaseResult& r) {
+  std::string line = scene.label + " " + c.integrator + " " +
+                     (c.tolerance ? "tol " + printf_number(*c.tolerance, "%.3g")
+                                  : "dt " + printf_number(c.dt, "%.4g")) +
+                     ": " + printf_number(r.median_seconds, "%.3g") + " s, ";
+  if (r.blow_up_time) return line + "blew up at t = " + printf_number(*r.blow_up_time) + " s";
+  return line + "orientation error " + printf_number(r.errors.orientation_final, "%.2e") + " rad";
+}
+
+int bench(const BenchOptions& options, std::ostream& out, std::ostream& err) {
+  // Everything the user typed is checked before any output is created, the cheap checks
+  // before the scenes' meshes are read.
+  BenchOutcome outcome;
+  outcome.repeat =
+      static_cast<int>(parse_count(options.repeat.value_or("3"), "--repeat", 1));
+  const auto jobs = static_cast<std::size_t>(parse_count(options.jobs.value_or("1"), "--jobs", 1));
+  if (!gnuplot_available()) throw InputError("gnuplot is not installed (needed for the plots)");
+  plan(options, outcome.scenes, outcome.cases);
+  const std::filesystem::path tmp = start_output_folder(options.output, kBenchOutput);
+
+  try {
+    // References, once per scene.
+    for (BenchScene& scene : outcome.scenes) {
+      try {
+        scene.reference = make_reference(scene.bodies, scene.initial, scene.settings, scene.grid);
+      } catch (const InputError& error) {
+        throw InputError(scene.file.string() + ": " + error.what());
+      }
+    }
+
+    // The cases, one line (or a bar on a terminal) each.
+    const std::vector<int> cores = available_cores();
+    outcome.cores_available = cores.size();
+    outcome.workers = std::clamp<std::size_t>(jobs, 1, cores.size());
+    outcome.cores_used.assign(cores.begin(), cores.begin() + static_cast<long>(outcome.workers));
+    const bool tty = ProgressBar::on_terminal(err);
+    ProgressBar bar(err, outcome.cases.size(), "runs", tty);
+    const std::size_t total = outcome.cases.size();
+    outcome.results = run_cases(
+        outcome.scenes, outcome.cases, outcome.repeat, outcome.workers,
+        [&](std::size_t i, const CaseResult& r, std::size_t finished) {
+          if (tty) {
+            bar.update(finished);
+          } else {
+            err << "tumble bench: [" << finished << "/" << total << "] "
+                << case_line(outcome.scenes[outcome.cases[i].scene], outcome.cases[i], r) << "\n";
+          }
+        });
+    bar.clear();
+
+    // Outputs, then the directory into place.
+    write_results_csv(outcome, tmp / "results.csv");
+    write_plots(outcome, tmp);
+    write_report(outcome, tmp / "report.md");
+    finish_output_folder(tmp, options.output);
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove_all(tmp, ignored);
+    throw;
+  }
+  out << "tumble bench: " << outcome.cases.size() << " runs on " << outcome.workers
+      << " core(s); wrote " << (options.output / "report.md").string() << "\n";
+  return 0;
+}
+
+}  // namespace
+
+CLI::App& add_bench_command(CLI::App& cli, BenchOptions& options) {
+  CLI::App& bench = *cli.add_subcommand(
+      "bench", "Error against run time for each integrator: results.csv, plots, report.md");
+  bench.add_option_function<std::vector<std::string>>(
+      "SCENE",
+      [&](const std::vector<std::string>& values) {
+        options.scenes.assign(values.begin(), values.end());
+      },
+      "Scene files (JSON)");
+  bench.add_option_function<std::string>(
+      "--integrators", [&](const std::string& v) { options.integrators = v; },
+      "Comma-separated integrators (default: all but exact)");
+  bench.add_option_function<std::string>(
+      "--dts", [&](const std::string& v) { options.dts = v; },
+      "Comma-separated steps in s for fixed-step integrators, each dividing the largest "
+      "(default: the scene's dt times 4, 2, 1, 1/2, 1/4)");
+  bench.add_option_function<std::string>(
+      "--tolerances", [&](const std::string& v) { options.tolerances = v; },
+      "Comma-separated tolerances for adaptive integrators (default 1e-4,1e-6,...,1e-12)");
+  bench.add_option_function<std::string>(
+      "--duration", [&](const std::string& v) { options.duration = v; },
+      "Simulated time T in s (default: the scene's)");
+  bench.add_option_function<std::string>(
+      "--repeat", [&](const std::string& v) { options.repeat = v; },
+      "Timed runs per case after the measured warm-up run; the median is kept (default 3)");
+  bench.add_option_function<std::string>(
+      "--jobs", [&](const std::string& v) { options.jobs = v; },
+      "Cases run in parallel, one pinned core each, capped at the cores (default 1)");
+  bench.add_option_function<std::string>(
+      "-o,--output", [&](const std::string& v) { options.output = v; },
+      "Output directory DIR (written atomically; an existing one must be empty or a previous "
+      "bench output)");
+  return bench;
+}
+
+int run_bench(const BenchOptions& options, std::ostream& out, std::ostream& err) {
+  return run_guarded("bench", err, [&] { return bench(options, out, err); });
+}
+
+}  // namespace tumble::app

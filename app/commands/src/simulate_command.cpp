@@ -1,0 +1,323 @@
+// `tumble simulate`: scene in, trajectory CSV and an invariants summary out.
+#include "app/commands/simulate_command.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ostream>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+
+#include "app/analysis/blow_up.hpp"
+#include "app/support/csv_writer.hpp"
+#include "app/support/printf_number.hpp"
+#include "app/scene/scene.hpp"
+#include "engine/input_error.hpp"
+#include "engine/integrators.hpp"
+#include "engine/simulation.hpp"
+#include "engine/torque_free_exact.hpp"
+
+namespace tumble::app {
+namespace {
+
+using engine::InputError;
+
+
+
+/// Applies the command-line options on top of the scene and checks them all.
+void apply_options(const SimulateOptions& options, SceneDescription& scene) {
+  if (options.integrator) override_integrator(scene, *options.integrator);
+  if (options.dt) scene.dt = positive_option(*options.dt, "--dt");
+  if (options.duration) scene.duration = positive_option(*options.duration, "--duration");
+  if (options.tolerance) scene.tolerance = positive_option(*options.tolerance, "--tolerance");
+  if (auto problem = step_problem(scene.dt, scene.duration)) {
+    throw InputError((options.dt ? std::string("--dt") : scene.file.string() + ": dt") + ": " +
+                     *problem);
+  }
+  if (options.every < 1) {
+    throw InputError("--every: expected a whole number >= 1, got " + std::to_string(options.every));
+  }
+  if (options.blowup_factor && !(positive_option(*options.blowup_factor, "--blowup-factor") > 1.0)) {
+    throw InputError("--blowup-factor: expected a growth factor > 1, got " +
+                     printf_number(*options.blowup_factor, "%.17g"));
+  }
+}
+
+/// Relative drift |value - initial| / |initial|, or absolute when the initial value is zero.
+double drift(double value, double initial) {
+  const double change = std::abs(value - initial);
+  return initial != 0.0 ? change / std::abs(initial) : change;
+}
+
+/// Watches one body's energy and |L| over a run.
+struct InvariantMonitor {
+  double energy0 = 0.0;
+  double momentum0 = 0.0;
+  double energy_max = 0.0;
+  double momentum_max = 0.0;
+  double energy_final = 0.0;
+  double momentum_final = 0.0;
+
+  InvariantMonitor(const engine::BodyModel& body, const engine::BodyState& state)
+      : energy0(engine::energy(body, state)), momentum0(state.angular_momentum.norm()) {}
+
+  void observe(const engine::BodyModel& body, const engine::BodyState& state) {
+    energy_final = drift(engine::energy(body, state), energy0);
+    momentum_final = drift(state.angular_momentum.norm(), momentum0);
+    energy_max = std::max(energy_max, energy_final);
+    momentum_max = std::max(momentum_max, momentum_final);
+  }
+};
+
+/// The geodesic angle between the body's orientation and the exact torque-free solution at
+/// the simulation's time, or nothing when the exact solution does not apply.
+std::optional<double> exact_orientation_error(const engine::BodyModel& body,
+                                              const engine::BodyState& initial,
+                                              const engine::BodyState& state, double time) {
+  if (!body.torque_free()) return std::nullopt;
+  // Initial angular velocity in principal axes: J^-1 R^T L.
+  const Eigen::Vector3d omega_body =
+      (initial.orientation.conjugate() * initial.angular_momentum).cwiseQuotient(body.moments);
+  try {
+    const engine::TorqueFreeMotion exact(body.moments, initial.orientation, omega_body);
+    return engine::orientation_angle(exact.at(time).orientation, state.orientation);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
+int list_integrators(bool json, std::ostream& out) {
+  const auto& catalog = engine::integrator_catalog();
+  if (json) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& info : catalog) {
+      list.push_back({{"name", info.name},
+                      {"order", info.order},
+                      {"adaptive", info.adaptive},
+                      {"needs_torque_free", info.needs_torque_free},
+                      {"properties", info.properties}});
+    }
+    out << list.dump(2) << "\n";
+    return 0;
+  }
+  std::size_t width = 4;
+  for (const auto& info : catalog) width = std::max(width, info.name.size());
+  const auto pad = [](std::string text, std::size_t size) {
+    text.resize(std::max(size, text.size()), ' ');
+    return text;
+  };
+  out << pad("name", width + 2) << pad("order", 7) << "properties\n";
+  for (const auto& info : catalog) {
+    const std::string order = info.order < 0 ? "exact" : std::to_string(info.order);
+    out << pad(info.name, width + 2) << pad(order, 7) << info.properties << "\n";
+  }
+  return 0;
+}
+
+/// Runs the scene, filling `summary`; returns the exit status.
+int simulate(const SimulateOptions& options, RunSummary& summary, std::ostream& err) {
+  // Scene and options: everything is checked before any output is created.
+  SceneDescription scene = load_scene(options.scene);
+  apply_options(options, scene);
+
+  // The CSV's temporary file is created now, so an unwritable path fails before the run.
+  std::optional<TrajectoryCsv> csv;
+  if (options.csv) csv.emplace(*options.csv);
+
+  // Compile (import meshes) and build the simulation.
+  CompiledScene compiled = compile_scene(scene);
+  engine::SimulationSettings settings = compiled.settings;
+  if (options.blowup_factor) settings.blowup_factor = *options.blowup_factor;
+  std::optional<engine::Simulation> built;
+  try {
+    built.emplace(std::move(compiled.bodies), std::move(compiled.initial), settings);
+  } catch (const InputError& error) {  // e.g. the exact integrator on a body with torques
+    throw InputError(scene.file.string() + ": " + error.what());
+  }
+  engine::Simulation& simulation = *built;
+  const auto& bodies = simulation.bodies();
+
+  summary.scene = scene.name;
+  summary.file = scene.file;
+  summary.integrator = scene.integrator;
+  summary.dt = settings.dt;
+  summary.duration = settings.duration;
+  summary.total_steps = simulation.total_steps();
+  std::vector<InvariantMonitor> monitors;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    monitors.emplace_back(bodies[i], simulation.initial_states()[i]);
+  }
+
+  // Step, timing the steps only; watch the invariants every step, write every Nth.
+  const auto every = static_cast<std::size_t>(options.every);
+  if (csv) csv->write_rows(simulation.time(), bodies, simulation.states());
+  std::size_t last_written = 0;
+  std::chrono::steady_clock::duration stepping{};
+  while (!simulation.finished()) {
+    const auto start = std::chrono::steady_clock::now();
+    const bool good = simulation.step();
+    stepping += std::chrono::steady_clock::now() - start;
+    if (!good) break;
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      monitors[i].observe(bodies[i], simulation.states()[i]);
+    }
+    if (csv && (simulation.steps() % every == 0 || simulation.finished())) {
+      csv->write_rows(simulation.time(), bodies, simulation.states());
+      last_written = simulation.steps();
+    }
+  }
+  // After a blow-up the states are the last good ones: make sure that row is in the file.
+  if (csv && simulation.steps() != last_written && simulation.steps() > 0) {
+    csv->write_rows(simulation.time(), bodies, simulation.states());
+  }
+  if (csv) {
+    csv->commit();
+    summary.csv = csv->path();
+    summary.csv_rows = csv->rows();
+  }
+
+  // Summary.
+  summary.steps = simulation.steps();
+  summary.time = simulation.time();
+  summary.wall_seconds = std::chrono::duration<double>(stepping).count();
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    BodySummary body;
+    body.name = bodies[i].name;
+    body.energy_conserved = bodies[i].conservative();
+    body.momentum_conserved = bodies[i].torque_free();
+    body.energy_drift_max = monitors[i].energy_max;
+    body.energy_drift_final = monitors[i].energy_final;
+    body.momentum_drift_max = monitors[i].momentum_max;
+    body.momentum_drift_final = monitors[i].momentum_final;
+    body.orientation_error = exact_orientation_error(bodies[i], simulation.initial_states()[i],
+                                                     simulation.states()[i], simulation.time());
+    summary.bodies.push_back(body);
+  }
+  if (simulation.blow_up()) {
+    std::string message = "blow-up: " + describe_blow_up(simulation);
+    if (csv) {
+      message += "; " + csv->path().string() +
+                 " holds the rows up to t = " + printf_number(simulation.time(), "%.9g") + " s";
+    }
+    err << "tumble simulate: " << message << "\n";
+    summary.blow_up = message;
+    return kExitBlowUp;
+  }
+  return 0;
+}
+
+}  // namespace
+
+CLI::App& add_simulate_command(CLI::App& cli, SimulateOptions& options) {
+  CLI::App& simulate = *cli.add_subcommand(
+      "simulate", "Run a scene without rendering: trajectory CSV and an invariants summary");
+  simulate.add_option_function<std::string>(
+      "SCENE", [&](const std::string& value) { options.scene = value; }, "Scene file (JSON)");
+  simulate.add_option_function<std::string>(
+      "--integrator", [&](const std::string& value) { options.integrator = value; },
+      "Integrator name (overrides the scene; see --list-integrators)");
+  simulate.add_option_function<double>(
+      "--dt", [&](double value) { options.dt = value; }, "Time step H in seconds");
+  simulate.add_option_function<double>(
+      "--duration", [&](double value) { options.duration = value; }, "Simulated time T in seconds");
+  simulate.add_option_function<double>(
+      "--tolerance", [&](double value) { options.tolerance = value; },
+      "Local error tolerance TOL of adaptive integrators");
+  simulate.add_option_function<std::string>(
+      "--csv", [&](const std::string& value) { options.csv = value; },
+      "Write the trajectory to FILE (written atomically)");
+  simulate.add_option("--every", options.every,
+                      "Write every Nth step to the CSV (the first and last always; default 1)");
+  simulate.add_flag("--json", options.json, "Print the summary as one JSON object");
+  simulate.add_option_function<double>(
+      "--blowup-factor", [&](double value) { options.blowup_factor = value; },
+      "Energy or |L| growth F that stops the run as a blow-up (default 10)");
+  simulate.add_flag("--list-integrators", options.list_integrators,
+                    "List the integrators with their order and properties, then exit");
+  return simulate;
+}
+
+nlohmann::json summary_to_json(const RunSummary& summary) {
+  nlohmann::json bodies = nlohmann::json::array();
+  for (const BodySummary& body : summary.bodies) {
+    bodies.push_back({
+        {"name", body.name},
+        {"energy_conserved", body.energy_conserved},
+        {"momentum_conserved", body.momentum_conserved},
+        {"energy_drift", {{"max", body.energy_drift_max}, {"final", body.energy_drift_final}}},
+        {"momentum_drift",
+         {{"max", body.momentum_drift_max}, {"final", body.momentum_drift_final}}},
+        {"orientation_error",
+         body.orientation_error ? nlohmann::json(*body.orientation_error) : nlohmann::json()},
+    });
+  }
+  return {
+      {"scene", summary.scene},
+      {"file", summary.file.string()},
+      {"integrator", summary.integrator},
+      {"dt", summary.dt},
+      {"duration", summary.duration},
+      {"steps", summary.steps},
+      {"total_steps", summary.total_steps},
+      {"time", summary.time},
+      {"wall_seconds", summary.wall_seconds},
+      {"steps_per_second", summary.wall_seconds > 0.0
+                               ? static_cast<double>(summary.steps) / summary.wall_seconds
+                               : 0.0},
+      {"csv", summary.csv ? nlohmann::json(summary.csv->string()) : nlohmann::json()},
+      {"csv_rows", summary.csv_rows},
+      {"completed", !summary.blow_up.has_value()},
+      {"blow_up", summary.blow_up ? nlohmann::json(*summary.blow_up) : nlohmann::json()},
+      {"bodies", bodies},
+  };
+}
+
+std::string format_summary(const RunSummary& summary) {
+  std::ostringstream out;
+  out << summary.scene << ": " << summary.integrator << ", dt " << printf_number(summary.dt) << " s, "
+      << summary.steps << " of " << summary.total_steps
+      << " steps to t = " << printf_number(summary.time) << " s"
+      << (summary.blow_up ? " (blew up)" : "") << "\n";
+  const double rate =
+      summary.wall_seconds > 0.0 ? static_cast<double>(summary.steps) / summary.wall_seconds : 0.0;
+  out << "  stepping " << printf_number(summary.wall_seconds, "%.3g") << " s wall, "
+      << printf_number(rate, "%.3g") << " steps/s\n";
+  for (const BodySummary& body : summary.bodies) {
+    out << "  body '" << body.name << "'\n";
+    out << "    energy drift   max " << printf_number(body.energy_drift_max, "%.3e") << "  final "
+        << printf_number(body.energy_drift_final, "%.3e")
+        << (body.energy_conserved ? "" : "  (not an invariant here)") << "\n";
+    out << "    |L| drift      max " << printf_number(body.momentum_drift_max, "%.3e") << "  final "
+        << printf_number(body.momentum_drift_final, "%.3e")
+        << (body.momentum_conserved ? "" : "  (not an invariant here: torques)") << "\n";
+    if (body.orientation_error) {
+      out << "    orientation error " << printf_number(*body.orientation_error, "%.3e")
+          << " rad against the exact torque-free solution\n";
+    }
+  }
+  if (summary.csv) {
+    out << "  csv " << summary.csv->string() << " (" << summary.csv_rows << " rows)\n";
+  }
+  return out.str();
+}
+
+int run_simulate(const SimulateOptions& options, std::ostream& out, std::ostream& err) {
+  if (options.list_integrators) return list_integrators(options.json, out);
+  if (options.scene.empty()) {
+    err << "tumble simulate: error: a SCENE file is required (or --list-integrators)\n";
+    return kExitInputError;
+  }
+  return run_guarded("simulate", err, [&] {
+    RunSummary summary;
+    const int status = simulate(options, summary, err);
+    if (options.json) {
+      out << summary_to_json(summary).dump(2) << "\n";
+    } else {
+      out << format_summary(summary);
+    }
+    return status;
+  });
+}
+
+}  // namespace tumble::app

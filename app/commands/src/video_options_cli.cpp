@@ -1,0 +1,44 @@
+#include "video_options_cli.hpp"
+
+#include <CLI/CLI.hpp>
+
+namespace tumble::app {
+
+void add_video_options(CLI::App& command, VideoOptions& options, const std::string& size_help) {
+  command
+      .add_option_function<std::string>(
+          "SCENE", [&](const std::string& value) { options.scene = value; }, "Scene file (JSON)")
+      ->required()
+      ->type_name("FILE");
+  command
+      .add_option_function<std::string>(
+          "-o,--output", [&](const std::string& value) { options.output = value; },
+          "A .mp4 (H.264), .webm (VP9) or .gif file, or a directory ending in '/' for "
+          "frame_000000.png, ...")
+      ->required()
+      ->type_name("OUTPUT");
+  command
+      .add_option_function<std::string>(
+          "--size", [&](const std::string& value) { options.size = value; }, size_help)
+      ->type_name("WxH");
+  command
+      .add_option_function<double>(
+          "--fps", [&](double value) { options.fps = value; },
+          "Video frames per second N (default 30)")
+      ->type_name("N");
+  command
+      .add_option_function<std::string>(
+          "--frames", [&](const std::string& value) { options.frames = value; },
+          "Render only frames A:B, half-open (A to B-1, counted from 0; A: and :B allowed); they "
+          "equal the same frames of a full render, and PNG files keep their frame numbers")
+      ->type_name("A:B");
+  command
+      .add_option_function<double>(
+          "--time-scale", [&](double value) { options.time_scale = value; },
+          "Simulated seconds per second of video S (default 1; 0.5 is slow motion)")
+      ->type_name("S");
+  command.add_flag("-q,--quiet", options.quiet,
+                   "No progress bar and no summary line (warnings and errors still print)");
+}
+
+}  // namespace tumble::app

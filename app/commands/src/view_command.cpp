@@ -1,0 +1,60 @@
+#include "app/commands/view_command.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include "app/commands/exit_status.hpp"
+
+namespace tumble::app {
+
+CLI::App& add_view_command(CLI::App& cli, ViewOptions& options) {
+  CLI::App& view = *cli.add_subcommand(
+      "view", "Interactive viewer: play a scene or a mesh, inspect it, switch integrators, record");
+  view.footer(
+      "Keys: Space play/pause, Right step, Backspace reset, - and = slower/faster, Ctrl+P "
+      "screenshot, Ctrl+R record, Ctrl+O open, F1 help, Esc/Ctrl+Q quit. Drag to orbit, wheel "
+      "to zoom, drop a file to open it. Needs a display (X11; xvfb-run works). Exit status: 0, "
+      "or 1 for bad options or no display; scene and mesh errors show in the window.");
+  view.add_option_function<std::string>(
+          "FILE", [&](const std::string& value) { options.file = value; },
+          "Scene (.json) or mesh file (default: the T-handle demo)")
+      ->type_name("FILE");
+  view.add_option_function<std::string>(
+          "--size", [&](const std::string& value) { options.size = value; },
+          "Window size WxH in pixels (default 1280x720)")
+      ->type_name("WxH");
+  view.add_option_function<std::string>(
+          "--script", [&](const std::string& value) { options.script = value; },
+          "Timed key and mouse events to play (one `TIME VERB ARGS` per line: key, keydown, "
+          "keyup, type, move, click, press, release, drag, wheel, drop, screenshot, quit)")
+      ->type_name("FILE");
+  view.add_option_function<std::string>(
+          "--output-dir", [&](const std::string& value) { options.output_dir = value; },
+          "Folder for screenshots and recordings (default: the working directory)")
+      ->type_name("DIR");
+  view.add_option_function<std::string>(
+          "--integrator", [&](const std::string& value) { options.integrator = value; },
+          "Integrator to start with (default: the scene's)")
+      ->type_name("NAME");
+  view.add_option_function<double>(
+          "--dt", [&](double value) { options.dt = value; }, "Time step to start with (s)")
+      ->type_name("S");
+  view.add_option_function<double>(
+          "--time-scale", [&](double value) { options.time_scale = value; },
+          "Simulated seconds per real second (default 1)")
+      ->type_name("S");
+  view.add_flag("--paused", options.paused, "Start paused");
+  view.add_option_function<double>(
+          "--exit-after", [&](double value) { options.exit_after = value; },
+          "Quit after S seconds of wall time")
+      ->type_name("S");
+  view.add_flag("--stats", options.stats,
+                "On exit, print frames drawn, frames per second and the frame-time median and "
+                "95th percentile");
+  return view;
+}
+
+int run_view(const ViewOptions& options, std::ostream& out, std::ostream& err) {
+  return run_guarded("view", err, [&] { return run_viewer_window(options, out, err); });
+}
+
+}  // namespace tumble::app

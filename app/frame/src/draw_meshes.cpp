@@ -1,0 +1,81 @@
+#include "draw_meshes.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "app/frame/frame_builder.hpp"
+#include "engine/primitive_meshes.hpp"
+
+namespace tumble::app {
+
+Eigen::Vector3d equivalent_box_size(double mass, const Eigen::Vector3d& moments) {
+  const double trace = moments.sum();
+  Eigen::Vector3d size;
+  for (int i = 0; i < 3; ++i) {
+    // I_j + I_k - I_i = m s_i^2 / 6 for the box of sides s.
+    size[i] = std::sqrt(std::max(0.0, 6.0 * (trace - 2.0 * moments[i]) / mass));
+  }
+  const double floor = 1e-3 * size.maxCoeff();
+  return size.cwiseMax(Eigen::Vector3d::Constant(floor));
+}
+
+namespace detail {
+
+render::MeshData shaded_mesh_data(const engine::TriangleMesh& mesh, double crease_angle_deg) {
+  const double cos_crease = std::cos(crease_angle_deg * std::numbers::pi / 180.0);
+
+  // Area-weighted face normals and the triangles around each vertex.
+  std::vector<Eigen::Vector3d> face_normals(mesh.triangles.size());
+  std::vector<std::vector<std::size_t>> faces_at(mesh.positions.size());
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const auto& t = mesh.triangles[f];
+    const Eigen::Vector3d& a = mesh.positions[t[0]];
+    face_normals[f] = (mesh.positions[t[1]] - a).cross(mesh.positions[t[2]] - a);
+    for (std::uint32_t v : t) faces_at[v].push_back(f);
+  }
+
+  // One vertex per corner, its normal averaged over the faces within the crease angle.
+  render::MeshData out;
+  out.positions.reserve(3 * mesh.triangles.size());
+  out.normals.reserve(3 * mesh.triangles.size());
+  out.indices.reserve(3 * mesh.triangles.size());
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const Eigen::Vector3d own = face_normals[f].normalized();
+    for (std::uint32_t v : mesh.triangles[f]) {
+      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+      for (std::size_t g : faces_at[v]) {
+        if (face_normals[g].normalized().dot(own) >= cos_crease) sum += face_normals[g];
+      }
+      const Eigen::Vector3d normal = sum.squaredNorm() > 0.0 ? sum.normalized() : own;
+      out.indices.push_back(static_cast<std::uint32_t>(out.positions.size()));
+      out.positions.push_back(mesh.positions[v].cast<float>());
+      out.normals.push_back(normal.cast<float>());
+    }
+  }
+  return out;
+}
+
+render::MeshData ellipsoid_mesh_data(const Eigen::Vector3d& radii) {
+  const engine::TriangleMesh mesh = engine::ellipsoid_mesh(radii, 48, 24);
+  render::MeshData out;
+  const Eigen::Vector3d inverse_squared = radii.cwiseProduct(radii).cwiseInverse();
+  for (const Eigen::Vector3d& p : mesh.positions) {
+    out.positions.push_back(p.cast<float>());
+    // The gradient of sum (x_i / r_i)^2.
+    out.normals.push_back(p.cwiseProduct(inverse_squared).normalized().cast<float>());
+  }
+  for (const auto& t : mesh.triangles) out.indices.insert(out.indices.end(), t.begin(), t.end());
+  return out;
+}
+
+double bounding_radius(const engine::TriangleMesh& mesh) {
+  double radius = 0.0;
+  for (const Eigen::Vector3d& p : mesh.positions) radius = std::max(radius, p.norm());
+  return radius;
+}
+
+}  // namespace detail
+}  // namespace tumble::app

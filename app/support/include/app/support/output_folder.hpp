@@ -1,0 +1,30 @@
+#pragma once
+/// @file Output folders written whole or not at all (`tumble bench -o DIR`, `tumble stability
+/// -o DIR`): everything goes to .DIR.tmp-PID, which takes DIR's place only when finished.
+
+#include <filesystem>
+#include <string>
+
+namespace tumble::app {
+
+/// What marks a folder as an earlier output of a command, which may be replaced: a report file
+/// whose first line starts with `title`, beside a data file.
+struct OutputFolderKind {
+  std::string command;  ///< the command, for messages ("bench")
+  std::string report;   ///< "report.md"
+  std::string title;    ///< "# tumble bench"
+  std::string data;     ///< "results.csv"
+};
+
+/// Checks that `dir` may be written, and creates and returns .DIR.tmp-PID. `dir` may be absent
+/// (its parent must exist), empty, or an earlier output of this kind; anything else is refused,
+/// since replacing it would delete the user's files. Throws engine::InputError naming -o and the
+/// folder.
+std::filesystem::path start_output_folder(const std::filesystem::path& dir,
+                                          const OutputFolderKind& kind);
+
+/// Moves the finished .DIR.tmp-PID into place, replacing an earlier DIR (moved aside first and
+/// removed last). Throws engine::InputError naming -o and the folder.
+void finish_output_folder(const std::filesystem::path& tmp, const std::filesystem::path& dir);
+
+}  // namespace tumble::app

@@ -1,0 +1,128 @@
+#pragma once
+/// @file A scene as a video: the plan (scene, settings, frame range, all checked before any mesh
+/// is read), the job that steps the simulation frame by frame and draws it, and the output.
+///
+/// Frames are sampled from the simulation at the video's frame rate: frame k shows the state
+/// at simulated time t_k = k * time_scale / fps. The simulation keeps its own dt; it is stepped
+/// while its next step ends at or before t_k, so when dt does not divide the frame interval a
+/// frame shows the last state at or before t_k (the overlay prints the time actually shown).
+
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+
+#include "app/scene/render_settings.hpp"
+#include "app/scene/scene.hpp"
+#include "render/draw_list.hpp"
+#include "render/image.hpp"
+
+namespace tumble::engine {
+class Simulation;
+}  // namespace tumble::engine
+
+namespace tumble::render {
+class ImageSink;
+class Renderer;
+}  // namespace tumble::render
+
+namespace tumble::app {
+
+/// What the commands that write a video of a scene (`render`, `compare`) are asked alike.
+struct VideoOptions {
+  std::filesystem::path scene;
+  std::filesystem::path output;       ///< "dir/" (PNG sequence), .mp4, .webm or .gif
+  std::optional<std::string> size;    ///< "WIDTHxHEIGHT"
+  std::optional<double> fps;          ///< video frames per second
+  std::optional<std::string> frames;  ///< "A:B", half-open
+  std::optional<double> time_scale;   ///< simulated seconds per second of video
+  bool quiet = false;
+};
+
+/// What `tumble render` was asked to do. Options given here override the scene.
+struct RenderOptions : VideoOptions {
+  std::optional<std::string> integrator;
+  std::optional<double> dt;
+  std::optional<int> antialiasing;  ///< samples per pixel
+  bool no_overlay = false;
+};
+
+/// A half-open range [first, end) of frame numbers.
+struct FrameRange {
+  std::size_t first = 0;
+  std::size_t end = 0;
+};
+
+/// Frames in a video of `duration` simulated seconds: floor(duration * fps / time_scale) + 1
+/// (frame 0 is the initial state; a product within 1e-9 of a whole number counts as it).
+std::size_t frame_count(double duration, double fps, double time_scale);
+
+/// The simulated time frame `frame` shows, k * time_scale / fps.
+double frame_time(std::size_t frame, double fps, double time_scale);
+
+/// Parses "WIDTHxHEIGHT" (whole numbers, 1 to 8192). Throws engine::InputError naming --size.
+std::pair<int, int> parse_frame_size(const std::string& text);
+
+/// Parses "A:B" (either end may be left out: ":B" is 0:B, "A:" is A:total) and checks
+/// 0 <= A < B <= total. Throws engine::InputError naming --frames.
+FrameRange parse_frame_range(const std::string& text, std::size_t total);
+
+/// Everything decided before any mesh is read or any output opened.
+struct RenderPlan {
+  SceneDescription scene;   ///< with --integrator and --dt applied
+  RenderSettings settings;  ///< the scene's `render` object with the options applied
+  std::size_t total_frames = 0;
+  FrameRange frames;  ///< the frames to write
+};
+
+/// Loads the scene and checks every option. Throws engine::InputError.
+RenderPlan plan_render(const RenderOptions& options);
+
+/// A running render: the compiled scene, its simulation, the renderer and the frame builder.
+/// Frames are visited in order; every frame time is observed from the start, drawn or not, so a
+/// range of frames is identical to the same frames of a full render.
+class RenderJob {
+ public:
+  /// Imports the meshes and creates the renderer. Throws engine::InputError (scene) or
+  /// std::runtime_error (no GL context).
+  explicit RenderJob(const RenderPlan& plan);
+  /// Same, drawing with `renderer` (the caller's, which must outlive the job; its size is the
+  /// caller's business): several jobs can share one GL context, and their draw lists' meshes
+  /// are valid in it. Throws engine::InputError (scene).
+  RenderJob(const RenderPlan& plan, render::Renderer& renderer);
+  /// Same, with the scene already compiled (from a plan that differs from this one at most in
+  /// its simulation settings, which are taken from `plan`): runs of one scene under several
+  /// integrators read its meshes once. Throws engine::InputError (an integrator that cannot
+  /// take a body).
+  RenderJob(const RenderPlan& plan, const CompiledScene& compiled, render::Renderer& renderer);
+  ~RenderJob();
+  RenderJob(const RenderJob&) = delete;
+  RenderJob& operator=(const RenderJob&) = delete;
+
+  /// Steps the simulation to frame `frame`'s time, observing every frame time on the way.
+  /// Frames never go back. After a blow-up the simulation stays at its last good state.
+  void advance_to(std::size_t frame);
+
+  /// Draws the current state into `image` (storage reused).
+  void draw(render::Image& image);
+
+  /// The draw list of the current state (what draw() renders).
+  render::DrawList build() const;
+
+  const engine::Simulation& simulation() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Opens the output of `options` (its name and --size) for frames of `settings`' size before
+/// anything is rendered; videos need even sides. Throws engine::InputError (unknown kind, odd
+/// sides) or std::runtime_error (filesystem, ffmpeg), naming the path.
+std::unique_ptr<render::ImageSink> open_render_output(const VideoOptions& options,
+                                                      const RenderSettings& settings,
+                                                      std::size_t first_frame);
+
+}  // namespace tumble::app

@@ -1,0 +1,37 @@
+#pragma once
+/// @file What `tumble view` is asked to do, and the window that does it (app/viewer/window/,
+/// built when the TUMBLE_VIEWER option is on, the default where SDL2 is found).
+
+#include <filesystem>
+#include <iosfwd>
+#include <optional>
+#include <string>
+
+namespace tumble::app {
+
+/// What `tumble view` was asked to do.
+struct ViewOptions {
+  std::optional<std::filesystem::path> file;    ///< scene (.json) or mesh; default: the demo
+  std::optional<std::string> size;              ///< "WIDTHxHEIGHT" of the window
+  std::optional<std::filesystem::path> script;  ///< timed input events (see viewer_input.hpp)
+  std::filesystem::path output_dir = ".";       ///< screenshots and recordings
+  std::optional<std::string> integrator;
+  std::optional<double> dt;
+  std::optional<double> time_scale;
+  bool paused = false;
+  std::optional<double> exit_after;  ///< seconds of wall time, then quit
+  bool stats = false;                ///< print frame-time statistics on exit
+};
+
+/// Whether this build has the windowed viewer.
+bool viewer_available();
+
+/// The scene `tumble view` opens when given none (the default demo), if it is found.
+std::optional<std::filesystem::path> default_view_scene();
+
+/// Runs the viewer's window until it closes. Returns 0, or 1 with one line on `err` when the
+/// options are wrong, there is no display, or this build has no viewer. Scene and mesh errors
+/// show in the window, which keeps running.
+int run_viewer_window(const ViewOptions& options, std::ostream& out, std::ostream& err);
+
+}  // namespace tumble::app

@@ -1,0 +1,319 @@
+// End-to-end tests of `tumble stability` on the quick suite: the outcomes PHYSICS.md §5
+// predicts (explicit Euler blows up on the needle where splitting holds, implicit Euler damps
+// the fast top, symplectic Euler's limit at wn dt = 2), the outputs and the errors.
+#include "app/commands/stability_command.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "support/run_command.hpp"
+
+namespace tumble::app {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::Not;
+using tumble::testing::fresh_directory;
+using tumble::testing::read_text;
+using tumble::testing::run_command;
+using tumble::testing::tumble_executable;
+
+/// Splits one CSV line (quoted fields may hold commas and doubled quotes).
+std::vector<std::string> csv_fields(const std::string& line) {
+  std::vector<std::string> fields(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+        fields.back() += '"';
+        ++i;
+      } else if (c == '"') {
+        quoted = false;
+      } else {
+        fields.back() += c;
+      }
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      fields.emplace_back();
+    } else {
+      fields.back() += c;
+    }
+  }
+  return fields;
+}
+
+/// The CSV as rows of column name -> value.
+std::vector<std::map<std::string, std::string>> read_csv(const std::filesystem::path& file,
+                                                         std::vector<std::string>* header = nullptr) {
+  std::istringstream in(read_text(file));
+  std::string line;
+  std::getline(in, line);
+  const std::vector<std::string> names = csv_fields(line);
+  if (header) *header = names;
+  std::vector<std::map<std::string, std::string>> rows;
+  while (std::getline(in, line)) {
+    const std::vector<std::string> fields = csv_fields(line);
+    EXPECT_EQ(fields.size(), names.size()) << line;
+    std::map<std::string, std::string> row;
+    for (std::size_t i = 0; i < std::min(fields.size(), names.size()); ++i) row[names[i]] = fields[i];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+/// The one row of (case, integrator, rate dt).
+std::map<std::string, std::string> find_row(const std::vector<std::map<std::string, std::string>>& rows,
+                                            const std::string& case_name,
+                                            const std::string& integrator, double rate_dt) {
+  for (const auto& row : rows) {
+    if (row.at("case") == case_name && row.at("integrator") == integrator &&
+        std::abs(std::stod(row.at("rate_dt")) - rate_dt) < 1e-9 * rate_dt) {
+      return row;
+    }
+  }
+  ADD_FAILURE() << "no row " << case_name << " " << integrator << " " << rate_dt;
+  return {};
+}
+
+/// One quick-suite run shared by the tests of this file.
+class QuickSuite : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    folder_ = new std::filesystem::path(fresh_directory("stability_quick"));
+    result_ = new tumble::testing::CommandResult(run_command(
+        tumble_executable() + " stability --suite quick -o '" + (*folder_ / "out").string() + "'"));
+  }
+  static void TearDownTestSuite() {
+    std::filesystem::remove_all(*folder_);
+    delete folder_;
+    delete result_;
+  }
+  static std::filesystem::path out() { return *folder_ / "out"; }
+  static std::filesystem::path* folder_;
+  static tumble::testing::CommandResult* result_;
+};
+std::filesystem::path* QuickSuite::folder_ = nullptr;
+tumble::testing::CommandResult* QuickSuite::result_ = nullptr;
+
+TEST_F(QuickSuite, ExitsZeroWithProgressOnStderr) {
+  EXPECT_EQ(result_->status, 0) << result_->err;
+  EXPECT_THAT(result_->err, HasSubstr("[1/3] needle"));
+  EXPECT_THAT(result_->out, HasSubstr("runs over 3 cases"));
+  // No temporary of any process is left beside the output (the run was another process).
+  const std::string temporary_prefix = "." + out().filename().string() + ".tmp-";
+  for (const auto& entry : std::filesystem::directory_iterator(out().parent_path())) {
+    EXPECT_FALSE(entry.path().filename().string().starts_with(temporary_prefix)) << entry.path();
+  }
+}
+
+TEST_F(QuickSuite, ExplicitEulerBlowsUpOnTheNeedleWhereSplittingIsStable) {
+  const auto rows = read_csv(out() / "stability.csv");
+  const auto explicit_run = find_row(rows, "needle", "explicit-euler", 5.0);
+  EXPECT_EQ(explicit_run.at("outcome"), "blew up");
+  EXPECT_FALSE(explicit_run.at("blowup_time").empty());
+  EXPECT_GT(std::stod(explicit_run.at("blowup_time")), 0.0);
+  const auto splitting = find_row(rows, "needle", "splitting", 5.0);
+  EXPECT_EQ(splitting.at("outcome"), "stable");
+  EXPECT_LT(std::abs(std::stod(splitting.at("energy_max_gain"))), 1e-3);
+  EXPECT_EQ(splitting.at("reference"), "exact");
+  EXPECT_FALSE(splitting.at("orientation_error").empty());
+}
+
+TEST_F(QuickSuite, ImplicitEulerDampsTheFastTop) {
+  const auto rows = read_csv(out() / "stability.csv");
+  for (const double rate_dt : {0.2, 0.5}) {
+    const auto run = find_row(rows, "heavy-top", "implicit-euler", rate_dt);
+    EXPECT_EQ(run.at("outcome"), "damped") << rate_dt;
+    EXPECT_LT(std::stod(run.at("energy_change_final")), -1e-3);
+    EXPECT_EQ(run.at("reference"), "dopri 1e-12");
+  }
+  // The exact solution refuses the gravity top: skipped, with the reason.
+  const auto exact = find_row(rows, "heavy-top", "exact", 0.2);
+  EXPECT_EQ(exact.at("outcome"), "skipped");
+  EXPECT_FALSE(exact.at("note").empty());
+}
+
+TEST_F(QuickSuite, SymplecticEulerFlipsAcrossWnDtOfTwoOnTheStiffSpring) {
+  const auto rows = read_csv(out() / "stability.csv");
+  for (const double rate_dt : {1.5, 1.9}) {
+    const std::string outcome =
+        find_row(rows, "stiff-spring", "semi-implicit-euler", rate_dt).at("outcome");
+    EXPECT_TRUE(outcome == "stable" || outcome == "drifting") << rate_dt << ": " << outcome;
+  }
+  EXPECT_EQ(find_row(rows, "stiff-spring", "semi-implicit-euler", 2.1).at("outcome"), "blew up");
+}
+
+TEST_F(QuickSuite, CsvHasEveryColumnAndOneRowPerRun) {
+  std::vector<std::string> header;
+  const auto rows = read_csv(out() / "stability.csv", &header);
+  for (const char* column :
+       {"suite", "case", "integrator", "dt", "rate_label", "rate_dt", "duration", "steps",
+        "total_steps", "outcome", "blowup_time", "blowup_reason", "energy_change_final",
+        "energy_max_gain", "energy_max_loss", "momentum_change_final", "momentum_max_gain",
+        "momentum_max_loss", "orientation_error", "position_error", "reference", "wall_seconds",
+        "note"}) {
+    EXPECT_NE(std::find(header.begin(), header.end(), column), header.end()) << column;
+  }
+  // 11 integrators x (2 + 2 + 3) dts.
+  EXPECT_EQ(rows.size(), 11u * 7u);
+  for (const auto& row : rows) EXPECT_EQ(row.at("suite"), "quick");
+}
+
+TEST_F(QuickSuite, MarkdownHasTheRulesAndOneMatrixPerCase) {
+  const std::string md = read_text(out() / "stability.md");
+  EXPECT_THAT(md, HasSubstr("## Classification rules"));
+  EXPECT_THAT(md, HasSubstr("**damped**"));
+  for (const char* name : {"needle", "heavy-top", "stiff-spring"}) {
+    EXPECT_THAT(md, HasSubstr(std::string("## Case `") + name + "`"));
+  }
+  EXPECT_THAT(md, HasSubstr("| integrator | 0.5 | 5 |"));
+  EXPECT_THAT(md, HasSubstr("| integrator | 1.5 | 1.9 | 2.1 |"));
+}
+
+TEST_F(QuickSuite, HeatMapPngAndSvgAreValid) {
+  const std::string png = read_text(out() / "stability.png");
+  ASSERT_GE(png.size(), 8u);
+  EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  const std::string svg = read_text(out() / "stability.svg");
+  EXPECT_THAT(svg, HasSubstr("<svg"));
+  EXPECT_THAT(svg, HasSubstr("blew up"));
+  // The temporary gnuplot script is gone.
+  EXPECT_FALSE(std::filesystem::exists(out() / ".stability.gp"));
+}
+
+// ---------------------------------------------------------------------------------------------
+
+TEST(StabilityClassify, AppliesTheRulesToSignedChanges) {
+  InvariantChanges c;
+  c.energy_applies = true;
+  EXPECT_EQ(classify(true, c, 1e-3), StabilityOutcome::kBlewUp);
+  EXPECT_EQ(classify(false, c, 1e-3), StabilityOutcome::kStable);
+  c.energy_final = -0.05;
+  c.energy_max_loss = 0.05;
+  c.energy_late_max = -0.04;
+  c.energy_late_min = -0.05;
+  EXPECT_EQ(classify(false, c, 1e-3), StabilityOutcome::kDamped);
+  c.energy_max_gain = 0.01;  // it also grew: not a plain loss
+  EXPECT_EQ(classify(false, c, 1e-3), StabilityOutcome::kDrifting);
+  c.energy_max_gain = 0.0;
+  c.energy_late_max = 0.0;  // a loss that swings back to E0: not damping
+  EXPECT_EQ(classify(false, c, 1e-3), StabilityOutcome::kDrifting);
+  c.energy_late_max = -0.04;  // a wide bounded swing below E0: not damping
+  c.energy_late_min = -0.5;
+  EXPECT_EQ(classify(false, c, 1e-3), StabilityOutcome::kDrifting);
+  c = {};
+  c.energy_applies = true;
+  c.energy_final = 0.02;
+  c.energy_max_gain = 0.02;
+  EXPECT_EQ(classify(false, c, 1e-3), StabilityOutcome::kDrifting);
+  c = {};
+  EXPECT_EQ(classify(false, c, 1e-3), StabilityOutcome::kUnchecked);
+}
+
+TEST(StabilityCommand, UserSceneAppearsAsACase) {
+  const auto dir = fresh_directory("stability_scene");
+  const auto scene = dir / "wobbly.json";
+  std::ofstream(scene) << R"({"name": "wobbly", "duration": 2, "dt": 0.01,
+    "bodies": [{"inertia": {"principal": [1, 2, 3]}, "mass": 1,
+                "angular_velocity": [0.4, 0.8, 0.6]}]})";
+  const auto out = dir / "out";
+  const auto result = run_command(tumble_executable() + " stability --integrators splitting,rk4 '" +
+                                  scene.string() + "' -o '" + out.string() + "'");
+  ASSERT_EQ(result.status, 0) << result.err;
+  const auto rows = read_csv(out / "stability.csv");
+  ASSERT_EQ(rows.size(), 2u * 4u);  // dt x {1, 2, 4, 8}
+  for (const auto& row : rows) {
+    EXPECT_EQ(row.at("case"), "wobbly");
+    EXPECT_EQ(row.at("outcome"), "stable") << row.at("integrator") << " " << row.at("dt");
+  }
+  EXPECT_EQ(find_row(rows, "wobbly", "rk4", 0.08).at("reference"), "exact");
+  EXPECT_THAT(read_text(out / "stability.md"), HasSubstr("## Case `wobbly`"));
+
+  // With --dts the sweep is the user's.
+  const auto again = run_command(tumble_executable() + " stability --integrators rk4 --dts 0.05,0.1 '" +
+                                 scene.string() + "' -o '" + out.string() + "'");
+  ASSERT_EQ(again.status, 0) << again.err;
+  EXPECT_EQ(read_csv(out / "stability.csv").size(), 2u);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(StabilityCommand, ReplacesOnlyAnEmptyFolderOrAnEarlierOutput) {
+  const auto dir = fresh_directory("stability_output");
+  const auto scene = dir / "wobbly.json";
+  std::ofstream(scene) << R"({"name": "wobbly", "duration": 1, "dt": 0.01,
+    "bodies": [{"inertia": {"principal": [1, 2, 3]}, "mass": 1,
+                "angular_velocity": [0.4, 0.8, 0.6]}]})";
+  const auto stability = [&](const std::filesystem::path& out) {
+    return run_command(tumble_executable() + " stability --integrators rk4 --dts 0.1 '" +
+                       scene.string() + "' -o '" + out.string() + "'");
+  };
+  // A new folder, then the same one again: an earlier output is replaced.
+  ASSERT_EQ(stability(dir / "out").status, 0);
+  const auto again = stability(dir / "out");
+  EXPECT_EQ(again.status, 0) << again.err;
+  EXPECT_EQ(read_csv(dir / "out" / "stability.csv").size(), 1u);
+  // An empty folder is used.
+  std::filesystem::create_directory(dir / "empty");
+  EXPECT_EQ(stability(dir / "empty").status, 0);
+  EXPECT_TRUE(std::filesystem::exists(dir / "empty" / "stability.md"));
+  // A folder holding anything else is left alone.
+  std::filesystem::create_directory(dir / "mine");
+  std::ofstream(dir / "mine" / "notes.txt") << "keep";
+  const auto refused = stability(dir / "mine");
+  EXPECT_EQ(refused.status, 1);
+  EXPECT_THAT(refused.err, HasSubstr("-o: " + (dir / "mine").string() +
+                                     " exists and is neither empty nor a previous stability output"));
+  EXPECT_EQ(read_text(dir / "mine" / "notes.txt"), "keep");
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir / "mine"),
+                          std::filesystem::directory_iterator()),
+            1);
+  // No temporaries left behind.
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    EXPECT_EQ(name.find(".tmp"), std::string::npos) << name;
+    EXPECT_EQ(name.find(".old"), std::string::npos) << name;
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(StabilityCommand, ListSuitesNamesTheSuites) {
+  const auto result = run_command(tumble_executable() + " stability --list-suites");
+  EXPECT_EQ(result.status, 0);
+  EXPECT_THAT(result.out, HasSubstr("standard"));
+  EXPECT_THAT(result.out, HasSubstr("quick"));
+  EXPECT_THAT(result.out, HasSubstr("stiff-spring"));
+}
+
+/// Runs a failing command; checks exit 1, one line naming the problem, no output folder.
+void expect_input_error(const std::string& arguments, const std::string& message) {
+  const auto dir = fresh_directory("stability_errors");
+  const auto result = run_command(tumble_executable() + " stability " + arguments);
+  EXPECT_EQ(result.status, 1) << arguments;
+  EXPECT_THAT(result.err, HasSubstr(message)) << arguments;
+  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(StabilityCommand, InputErrorsAreOneLineAndExitOne) {
+  const std::string out = (std::filesystem::temp_directory_path() / "tumble_stab_err").string();
+  expect_input_error("--suite nope -o " + out, "--suite: unknown suite 'nope'");
+  expect_input_error("--suite quick --integrators rk4,warp -o " + out,
+                     "--integrators: unknown integrator 'warp'");
+  expect_input_error("--suite quick --dts 0.1,abc -o " + out,
+                     "--dts: expected a positive number, got 'abc'");
+  expect_input_error("--suite quick --dts=-1 -o " + out, "--dts");
+  expect_input_error("--suite quick --cases needle,nope -o " + out, "--cases: no case 'nope'");
+  expect_input_error("--suite quick -o /nonexistent/folder/out",
+                     "-o: cannot create /nonexistent/folder/out");
+  expect_input_error("--suite quick", "-o DIR is required");
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+}  // namespace
+}  // namespace tumble::app
