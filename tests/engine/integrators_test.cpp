@@ -309,8 +309,8 @@ TEST(ImplicitEuler, EnergyFallsEveryStep) {
 // ---------------------------------------------------------------------------------------------
 // Rates measured from simulated runs against closed forms.
 
-// The flip interval 2K(k)/lambda of PHYSICS.md §3, with K from the AGM above, against the time
-// between sign changes of the intermediate-axis body omega in an rk4 run.
+// The flip interval 2K(k)/lambda of engine/PHYSICS.md §4, with K from the AGM above, against the
+// time between sign changes of the intermediate-axis body omega in an rk4 run.
 TEST(IntermediateAxis, FlipIntervalMatchesEllipticFormula) {
   const BodyModel body = free_body(kMoments);
   const Eigen::Vector3d omega0(0.05, 1.0, 0.05);
@@ -368,7 +368,7 @@ struct Unwrapper {
 };
 
 // Symmetric body I1 = I2: body omega cones about the symmetry axis at (I3 - I1)/I1 w3, and the
-// symmetry axis cones about world L at G/I1 (PHYSICS.md §3), both counter-clockwise.
+// symmetry axis cones about world L at G/I1 (engine/PHYSICS.md §4), both counter-clockwise.
 TEST(SymmetricBody, PrecessionRatesMatchClosedForms) {
   const Eigen::Vector3d moments(1.0, 1.0, 2.0);
   const BodyModel body = free_body(moments);

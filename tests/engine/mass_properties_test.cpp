@@ -215,7 +215,7 @@ TEST(Convergence, Cylinder) {
                       relative_error(mp.inertia(2, 2) / mp.mass, r * r / 2.0),
                       relative_error(mp.inertia(0, 0) / mp.mass, (3.0 * r * r + h * h) / 12.0),
                       relative_error(mp.inertia(1, 1) / mp.mass, (3.0 * r * r + h * h) / 12.0)});
-    // About 6.6 / N^2 for the axial moment (PHYSICS.md section 6).
+    // About 6.6 / N^2 for the axial moment (engine/PHYSICS.md §8).
     EXPECT_NEAR(errors.back()[1] * n * n, 2.0 * pi * pi / 3.0, 0.1) << n;
   }
   expect_second_order(kSweep, errors, {"volume", "Izz/m", "Ixx/m", "Iyy/m"}, 1e-3);

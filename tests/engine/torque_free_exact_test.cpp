@@ -21,7 +21,7 @@ namespace {
 using Regime = TorqueFreeMotion::Regime;
 using LD = long double;
 
-// Orientation error: geodesic angle between two unit quaternions (PHYSICS.md §4).
+// Orientation error: geodesic angle between two unit quaternions (engine/PHYSICS.md §5).
 double angle_between(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
   const Eigen::Quaterniond r = a.conjugate() * b;
   return 2.0 * std::atan2(r.vec().norm(), std::abs(r.w()));

@@ -1,5 +1,5 @@
-// The built-in stability cases (PHYSICS.md §5): each a body and a dt sweep expressed through the
-// case's natural rate (|w| dt, w3 dt, wn dt), so the matrix columns read across cases.
+// The built-in stability cases (engine/PHYSICS.md §7): each a body and a dt sweep expressed
+// through the case's natural rate (|w| dt, w3 dt, wn dt), so the matrix columns read across cases.
 #include "app/analysis/stability_suite.hpp"
 
 #include <cmath>
@@ -158,7 +158,7 @@ StabilityCase far_from_origin(double duration, const std::vector<double>& rate_d
 
 StabilitySuite standard_suite() {
   return {"standard",
-          "every case of PHYSICS.md §5, a few seconds per integrator",
+          "every case of engine/PHYSICS.md §7, a few seconds per integrator",
           {fast_spin(20.0, {0.1, 0.3, 1.0, 2.0, 3.0}), needle(10.0, {0.1, 1.0, 5.0}),
            thin_disc(10.0, {0.1, 0.5, 1.0, 2.0}), heavy_top(2.0, {0.05, 0.1, 0.2, 0.5, 1.0}),
            stiff_spring(150.0, {0.5, 1.0, 1.5, 1.9, 2.1, 3.0}),

@@ -5,7 +5,8 @@
 // Design note
 // - SDL draws with its software renderer into a streaming texture that receives each frame's
 //   RGBA pixels; SDL's framebuffer acceleration is turned off first, because it would put a
-//   GLX context next to OSMesa's and crash (../shared/PLATFORM.md).
+//   GLX context next to OSMesa's and crash (SDL_HINT_FRAMEBUFFER_ACCELERATION "0", set
+//   before SDL_Init).
 // - ImGui gets input from our own event translation (viewer_input.hpp), not from the SDL
 //   backend, which polls the pointer from the window system: scripted events then behave
 //   exactly as real ones.

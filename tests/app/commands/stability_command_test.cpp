@@ -1,4 +1,4 @@
-// End-to-end tests of `tumble stability` on the quick suite: the outcomes PHYSICS.md §5
+// End-to-end tests of `tumble stability` on the quick suite: the outcomes engine/PHYSICS.md §7
 // predicts (explicit Euler blows up on the needle where splitting holds, implicit Euler damps
 // the fast top, symplectic Euler's limit at wn dt = 2), the outputs and the errors.
 #include "app/commands/stability_command.hpp"

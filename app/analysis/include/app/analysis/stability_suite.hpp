@@ -1,5 +1,5 @@
 #pragma once
-/// @file The built-in cases of `tumble stability` (PHYSICS.md §5), built directly as engine
+/// @file The built-in cases of `tumble stability` (engine/PHYSICS.md §7), built directly as engine
 /// bodies, and user scene files turned into extra cases.
 
 #include <filesystem>

@@ -1,7 +1,7 @@
 #pragma once
-/// @file `tumble stability`: runs stiff and extreme cases (PHYSICS.md §5) over every integrator
-/// and a dt sweep, classifies each run (stable, drifting, damped, blew up) and writes a CSV, a
-/// markdown report with one matrix per case and a heat map.
+/// @file `tumble stability`: runs stiff and extreme cases (engine/PHYSICS.md §7) over every
+/// integrator and a dt sweep, classifies each run (stable, drifting, damped, blew up) and writes
+/// a CSV, a markdown report with one matrix per case and a heat map.
 
 #include <filesystem>
 #include <iosfwd>
