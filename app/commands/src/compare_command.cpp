@@ -30,6 +30,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/commands/exit_status.hpp"
+#include "command_line.hpp"
 #include "video_options_cli.hpp"
 
 #include "app/analysis/blow_up.hpp"
@@ -289,9 +290,7 @@ int compare_scene(const CompareOptions& options, const InterruptGuard& guard, st
 }  // namespace
 
 CLI::App& add_compare_command(CLI::App& cli, CompareOptions& options) {
-  CLI::App& compare = *cli.add_subcommand(
-      "compare", "Render one scene with several integrators side by side (grid) or on top of "
-                 "each other (overlay) into one video or PNG frames");
+  CLI::App& compare = *cli.add_subcommand(kCompareSummary.name, kCompareSummary.summary);
   compare.footer(
       "Every run uses the same dt and the same frame times as tumble render. grid: one panel "
       "per integrator, same camera, each with its energy and |L| drift plots. overlay: every "

@@ -1,37 +1,64 @@
-// The `tumble` command line: one executable, one subcommand per job.
+// `tumble`: the command line. This executable holds the commands that draw nothing; for render,
+// compare and view it becomes tumble-draw (command_line.hpp says why).
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
 
 #include "app/commands/bench_command.hpp"
-#include "app/commands/compare_command.hpp"
+#include "app/commands/exit_status.hpp"
 #include "app/commands/inspect_command.hpp"
-#include "app/commands/render_command.hpp"
 #include "app/commands/simulate_command.hpp"
 #include "app/commands/stability_command.hpp"
-#include "app/commands/view_command.hpp"
-#include "app/commands/exit_status.hpp"
+#include "command_line.hpp"
+
+namespace {
+
+using tumble::app::CommandSummary;
+
+/// tumble-draw beside this executable.
+std::filesystem::path drawing_executable() {
+  std::error_code error;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
+  return (error ? std::filesystem::path(".") : self.parent_path()) / "tumble-draw";
+}
+
+/// Replaces this process with tumble-draw, given the same arguments; returns only on failure.
+int run_drawing_command(char** argv) {
+  const std::filesystem::path executable = drawing_executable();
+  ::execv(executable.c_str(), argv);
+  std::cerr << "tumble " << argv[1] << ": internal error: cannot run " << executable.string()
+            << ": " << std::strerror(errno) << " (it is built beside tumble)\n";
+  return tumble::app::kExitInternalError;
+}
+
+/// A drawing command in the help's list; never parsed here (main hands it over first).
+void add_placeholder(CLI::App& cli, const CommandSummary& command) {
+  cli.add_subcommand(command.name, command.summary)->allow_extras()->prefix_command();
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App cli{"tumble: rigid bodies with mass properties from real meshes: inspect, simulate, "
-               "render, compare, view"};
-  cli.require_subcommand(1);
-  cli.set_version_flag("--version", "tumble 0.1.0");
+  if (argc > 1 && tumble::app::is_drawing_command(argv[1])) return run_drawing_command(argv);
 
+  CLI::App cli;
+  tumble::app::configure_top_level(cli);
   tumble::app::InspectOptions inspect_options;
   CLI::App& inspect = tumble::app::add_inspect_command(cli, inspect_options);
   tumble::app::SimulateOptions simulate_options;
   CLI::App& simulate = tumble::app::add_simulate_command(cli, simulate_options);
-  tumble::app::RenderOptions render_options;
-  CLI::App& render = tumble::app::add_render_command(cli, render_options);
-  tumble::app::CompareOptions compare_options;
-  CLI::App& compare = tumble::app::add_compare_command(cli, compare_options);
+  add_placeholder(cli, tumble::app::kRenderSummary);
+  add_placeholder(cli, tumble::app::kCompareSummary);
   tumble::app::BenchOptions bench_options;
   CLI::App& bench = tumble::app::add_bench_command(cli, bench_options);
   tumble::app::StabilityOptions stability_options;
   CLI::App& stability = tumble::app::add_stability_command(cli, stability_options);
-  tumble::app::ViewOptions view_options;
-  CLI::App& view = tumble::app::add_view_command(cli, view_options);
+  add_placeholder(cli, tumble::app::kViewSummary);
 
   try {
     cli.parse(argc, argv);
@@ -39,15 +66,14 @@ int main(int argc, char** argv) {
     // --help and --version are "errors" that exit 0; every real one is bad input (status 1).
     return cli.exit(error) == 0 ? tumble::app::kExitDone : tumble::app::kExitInputError;
   }
-
   if (inspect.parsed()) return tumble::app::run_inspect(inspect_options, std::cout, std::cerr);
   if (simulate.parsed()) return tumble::app::run_simulate(simulate_options, std::cout, std::cerr);
-  if (render.parsed()) return tumble::app::run_render(render_options, std::cout, std::cerr);
-  if (compare.parsed()) return tumble::app::run_compare(compare_options, std::cout, std::cerr);
   if (bench.parsed()) return tumble::app::run_bench(bench_options, std::cout, std::cerr);
   if (stability.parsed()) {
     return tumble::app::run_stability(stability_options, std::cout, std::cerr);
   }
-  if (view.parsed()) return tumble::app::run_view(view_options, std::cout, std::cerr);
-  return tumble::app::kExitDone;
+  // A drawing command after an option (`tumble --x render`) reaches here: CLI11 has already
+  // refused the unknown option, so this is only a safeguard.
+  std::cerr << "tumble: error: the command must come first\n";
+  return tumble::app::kExitInputError;
 }

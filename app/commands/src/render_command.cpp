@@ -15,6 +15,7 @@
 
 #include "app/analysis/blow_up.hpp"
 #include "app/commands/exit_status.hpp"
+#include "command_line.hpp"
 #include "video_options_cli.hpp"
 #include "app/support/interrupt_guard.hpp"
 #include "app/support/printf_number.hpp"
@@ -90,8 +91,7 @@ int render_scene(const RenderOptions& options, const InterruptGuard& guard, std:
 }  // namespace
 
 CLI::App& add_render_command(CLI::App& cli, RenderOptions& options) {
-  CLI::App& render = *cli.add_subcommand(
-      "render", "Render a scene off-screen to a video (.mp4, .webm, .gif) or PNG frames (DIR/)");
+  CLI::App& render = *cli.add_subcommand(kRenderSummary.name, kRenderSummary.summary);
   render.footer(
       "Frame k shows the simulation at t = k * time_scale / fps; the simulation keeps its own "
       "dt and a frame shows the last step at or before that time (the overlay prints the time "

@@ -3,12 +3,12 @@
 #include <CLI/CLI.hpp>
 
 #include "app/commands/exit_status.hpp"
+#include "command_line.hpp"
 
 namespace tumble::app {
 
 CLI::App& add_view_command(CLI::App& cli, ViewOptions& options) {
-  CLI::App& view = *cli.add_subcommand(
-      "view", "Interactive viewer: play a scene or a mesh, inspect it, switch integrators, record");
+  CLI::App& view = *cli.add_subcommand(kViewSummary.name, kViewSummary.summary);
   view.footer(
       "Keys: Space play/pause, Right step, Backspace reset, - and = slower/faster, Ctrl+P "
       "screenshot, Ctrl+R record, Ctrl+O open, F1 help, Esc/Ctrl+Q quit. Drag to orbit, wheel "

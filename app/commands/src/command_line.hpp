@@ -1,0 +1,54 @@
+#pragma once
+/// @file What the two executables behind the one `tumble` command share: the top-level
+/// command line, and the names and summaries of the commands that draw.
+///
+/// `tumble` itself holds the commands that draw nothing (inspect, simulate, bench, stability):
+/// it never loads the GL, SDL or audio libraries. For render, compare and view it replaces
+/// itself with `tumble-draw`, the executable beside it that holds those three (README,
+/// "Start-up"), so to the user there is one command with one help text.
+
+#include <string_view>
+
+#include <CLI/CLI.hpp>
+
+namespace tumble::app {
+
+/// A subcommand's name and its one-line summary (the help's command list).
+struct CommandSummary {
+  const char* name;
+  const char* summary;
+};
+
+inline constexpr CommandSummary kRenderSummary{
+    "render", "Render a scene off-screen to a video (.mp4, .webm, .gif) or PNG frames (DIR/)"};
+inline constexpr CommandSummary kCompareSummary{
+    "compare",
+    "Render one scene with several integrators side by side (grid) or on top of each other "
+    "(overlay) into one video or PNG frames"};
+inline constexpr CommandSummary kViewSummary{
+    "view", "Interactive viewer: play a scene or a mesh, inspect it, switch integrators, record"};
+
+/// The commands `tumble-draw` runs, in the order the help lists them.
+inline constexpr CommandSummary kDrawingCommands[] = {kRenderSummary, kCompareSummary,
+                                                      kViewSummary};
+
+/// Whether `name` is one of kDrawingCommands.
+inline bool is_drawing_command(std::string_view name) {
+  for (const CommandSummary& command : kDrawingCommands) {
+    if (name == command.name) return true;
+  }
+  return false;
+}
+
+/// The top-level command line both executables start from: named "tumble", one subcommand
+/// required, --version.
+inline void configure_top_level(CLI::App& cli) {
+  cli.name("tumble");
+  cli.description(
+      "tumble: rigid bodies with mass properties from real meshes: inspect, simulate, render, "
+      "compare, bench, stability, view");
+  cli.require_subcommand(1);
+  cli.set_version_flag("--version", "tumble " TUMBLE_VERSION);
+}
+
+}  // namespace tumble::app
