@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <sstream>
 
-#include "app/printf_number.hpp"
 #include "engine/reference_motion.hpp"
 
 namespace tumble::app {
@@ -61,7 +61,9 @@ Reference make_reference(const std::vector<engine::BodyModel>& bodies,
   // Forced: how far the reference is from its check run.
   const auto check = grid_samples(*check_run, bodies, grid);
   ReferenceCheck figures;
-  figures.runs = motion.label() + " against " + printf_number(check_run->tolerance(), "%g");
+  std::ostringstream runs;  // "dopri 1e-13 against 1e-12"
+  runs << motion.label() << " against " << check_run->tolerance();
+  figures.runs = runs.str();
   for (std::size_t k = 0; k < check.size() && k < reference.samples.size(); ++k) {
     for (std::size_t i = 0; i < bodies.size(); ++i) {
       const ReferenceState& a = check[k][i];

@@ -1,7 +1,7 @@
 // Exact torque-free motion of a rigid body.
 //
 // Design note. Euler's equations without torque conserve the energy 2T = sum I_i w_i^2 and
-// G^2 = |I w|^2; their solution is (Landau & Lifshitz, Mechanics, §37; PHYSICS.md §3)
+// G^2 = |I w|^2; their solution is (Landau & Lifshitz, Mechanics, §37; engine/PHYSICS.md §4)
 //   w = (s1 A1 cn u, s2 A2 sn u, A3 dn u),  u = u0 + lambda t,
 // in a principal frame labelled J1, J2, J3 with J2 the intermediate moment and J3 the moment
 // of the axis that omega circles (J3 the largest when G^2 > 2T I2, the smallest otherwise;
@@ -163,7 +163,7 @@ bool TorqueFreeMotion::solve_elliptic(const InternalStart& start) {
   const double d = j1 * (j1 - j2) * w1 * w1 + j3 * (j3 - j2) * w3 * w3;
   if (a == 0.0 || b == 0.0) return false;
 
-  // Amplitudes, rate, parameter (PHYSICS.md §3, L&L §37).
+  // Amplitudes, rate, parameter (engine/PHYSICS.md §4, L&L §37).
   amplitude_ = Eigen::Vector3d(std::sqrt(a / (j1 * (j3 - j1))), std::sqrt(a / (j2 * (j3 - j2))),
                                std::sqrt(b / (j3 * (j3 - j1))));
   lambda_ = std::sqrt((j3 - j2) * b / (j1 * j2 * j3));
