@@ -22,7 +22,7 @@
 #endif
 
 #include "engine/input_error.hpp"
-#include "engine/vertex_welding.hpp"
+#include "vertex_welding.hpp"
 #include "split_in_two.hpp"
 
 namespace tumble::engine::detail {

@@ -31,7 +31,7 @@ struct BinaryStl {
 
 /// Reads `file` when it is a binary STL (named *.stl, case-insensitive, of size 84 + 50 n);
 /// returns nothing for any other file, which is assimp's to read. Corners at bit-identical
-/// positions are welded (engine/vertex_welding.hpp), in order of first appearance. Coordinates
+/// positions are welded (vertex_welding.hpp), in order of first appearance. Coordinates
 /// are not checked here: non-finite ones are import_mesh's to reject. Throws InputError naming
 /// the file when it cannot be read or holds more triangles than 32-bit indices can weld.
 /// `size` is the file's size in bytes, which the caller has already asked for.

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "engine/prefetch.hpp"
+#include "prefetch.hpp"
 
 namespace tumble::engine {
 namespace {
@@ -41,7 +41,7 @@ struct Sums {
   }
 };
 
-/// Hints the processor to fetch the corners of triangle `i`, if there is one (engine/prefetch.hpp).
+/// Hints the processor to fetch the corners of triangle `i`, if there is one (prefetch.hpp).
 inline void prefetch_corners(const TriangleMesh& mesh, std::size_t i) {
   if (i >= mesh.triangles.size()) return;
   for (const std::uint32_t v : mesh.triangles[i]) detail::prefetch(mesh.positions.data() + v);

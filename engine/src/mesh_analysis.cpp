@@ -176,58 +176,63 @@ void flip_reversed_parts(TriangleMesh& mesh, const Topology& topology,
   }
 }
 
-}  // namespace
-
-MeshReport analyze_mesh(TriangleMesh mesh, const MassOptions& options, const std::string& source,
-                        bool distinct_positions) {
-  check_options(options, source);
-  MeshReport report;
-  report.source = source;
-  report.input_triangles = mesh.triangles.size();
-  report.shell = options.shell_thickness.has_value();
-  if (mesh.triangles.empty()) fail(source, "contains no triangles");
-
-  // Scale to metres and reject non-finite coordinates (also those that overflow on scaling).
+/// Scales to metres and rejects non-finite coordinates (also those that overflow on scaling).
+void scale_positions(TriangleMesh& mesh, double scale, const std::string& source) {
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
     Eigen::Vector3d& p = mesh.positions[i];
-    if (options.scale != 1.0) p *= options.scale;
+    if (scale != 1.0) p *= scale;
     if (!p.allFinite()) {
       fail(source, "vertex " + std::to_string(i + 1) + " has a non-finite coordinate");
     }
   }
+}
 
-  // Weld, then drop triangles that use a vertex twice and vertices no triangle uses (they
-  // are not part of the body, and would move the bounding box).
+/// Welds, then drops triangles that use a vertex twice and vertices no triangle uses (they are
+/// not part of the body, and would move the bounding box).
+void weld_and_clean(TriangleMesh& mesh, bool distinct_positions, MeshReport& report) {
   if (!distinct_positions) report.welded_vertices = weld_by_position(mesh);
   report.degenerate_triangles = remove_degenerate_triangles(mesh);
   remove_unreferenced_vertices(mesh);
   report.vertices = mesh.positions.size();
   report.triangles = mesh.triangles.size();
   if (mesh.triangles.empty()) {
-    fail(source, "all " + plural(report.input_triangles, "triangle") + " are degenerate");
+    fail(report.source, "all " + plural(report.input_triangles, "triangle") + " are degenerate");
   }
   if (report.degenerate_triangles > 0) {
     report.warnings.push_back("skipped " + plural(report.degenerate_triangles, "degenerate triangle"));
   }
+}
 
-  // Bounding box; its centre is the reference point of all integrals.
+/// The bounding box into the report; its centre (returned) is the reference point of all
+/// integrals.
+Eigen::Vector3d bound(const TriangleMesh& mesh, MeshReport& report) {
   report.bounds_min = report.bounds_max = mesh.positions.front();
   for (const Eigen::Vector3d& p : mesh.positions) {
     report.bounds_min = report.bounds_min.cwiseMin(p);
     report.bounds_max = report.bounds_max.cwiseMax(p);
   }
-  const Eigen::Vector3d reference = 0.5 * (report.bounds_min + report.bounds_max);
+  return 0.5 * (report.bounds_min + report.bounds_max);
+}
 
-  // Edge topology and connected parts. On large meshes the edge counts (the longest pass) run
-  // on a second thread, while this one sums the volume integrals (needed in the common
-  // single-part case) and then finds the parts.
-  const bool concurrent = !report.shell && mesh.triangles.size() >= 200'000;
+/// The topology of the mesh, and its volume integrals when they were summed alongside.
+struct TopologyPass {
   Topology topology;
   MomentIntegrals solid;
-  if (concurrent) {
+  bool concurrent = false;  ///< `solid` holds the integrals of the mesh as read
+};
+
+/// Edge topology and connected parts, into the report. On large meshes the edge counts (the
+/// longest pass) run on a second thread, while this one sums the volume integrals (needed in
+/// the common single-part case) and then finds the parts.
+TopologyPass check_topology(const TriangleMesh& mesh, const Eigen::Vector3d& reference,
+                            MeshReport& report) {
+  TopologyPass pass;
+  pass.concurrent = !report.shell && mesh.triangles.size() >= 200'000;
+  Topology& topology = pass.topology;
+  if (pass.concurrent) {
     std::future<void> edges =
         std::async(std::launch::async, [&mesh, &topology] { count_edge_uses(mesh, topology); });
-    solid = solid_integrals(mesh, reference);
+    pass.solid = solid_integrals(mesh, reference);
     find_parts(mesh, topology);
     edges.get();
   } else {
@@ -242,67 +247,107 @@ MeshReport analyze_mesh(TriangleMesh mesh, const MassOptions& options, const std
     report.warnings.push_back(plural(topology.non_manifold_edges, "edge") +
                               " shared by more than two triangles (closed, but not a manifold)");
   }
+  return pass;
+}
 
-  MomentIntegrals integrals;
-  double density = 0.0;
-  if (report.shell) {
-    // Thin shell: area-weighted, orientation and closure do not matter.
-    report.thickness = *options.shell_thickness;
-    integrals = surface_integrals(mesh, reference);
-    report.area = integrals.measure;
-    report.volume = report.area * report.thickness;
-    if (!(report.area > 0.0)) fail(source, "has zero surface area");
-    density = options.mass ? *options.mass / report.volume : options.density.value_or(1000.0);
-    // Surface density rho * t turns area integrals into mass integrals.
-    report.mass_properties = mass_properties(integrals, reference, density * report.thickness);
-  } else {
-    if (topology.boundary_edges > 0) {
-      fail(source, "the surface is open (" + plural(topology.boundary_edges, "boundary edge") +
-                       "), so it encloses no volume; for a thin sheet or open surface use "
-                       "--shell THICKNESS");
-    }
-    if (topology.inconsistent_edges > 0) {
-      fail(source, "inconsistent winding: " + plural(topology.inconsistent_edges, "edge") +
-                       " used twice in the same direction (neighbouring faces disagree on "
-                       "inside and outside)");
-    }
-    if (topology.parts == 1) {
-      // One part: its orientation is the sign of the volume; flipping every face negates all
-      // three integrals, so no second pass is needed.
-      if (!concurrent) solid = solid_integrals(mesh, reference);
-      if (!(std::abs(solid.measure) > 1e-9 * solid.absolute_measure)) fail_zero_volume(source);
-      if (solid.measure < 0.0) {
-        solid.measure = -solid.measure;
-        solid.first = -solid.first;
-        solid.second = -solid.second;
-        report.flipped = true;
-        report.warnings.push_back("the faces point inward (negative volume): flipped them all");
-      }
-      integrals = solid;
-    } else {
-      std::vector<PartSummary> parts = summarize_parts(mesh, topology, reference);
-      double signed_total = 0.0, absolute_total = 0.0;
-      for (const PartSummary& part : parts) {
-        signed_total += part.signed_volume;
-        absolute_total += part.absolute_volume;
-      }
-      // Zero volume relative to the rounding scale of the signed sum (scale-free).
-      if (!(std::abs(signed_total) > 1e-9 * absolute_total)) fail_zero_volume(source);
-      orient_parts(parts, signed_total, mesh, topology, report);
-      const bool any_reversed =
-          std::any_of(parts.begin(), parts.end(), [](const PartSummary& p) { return p.reversed; });
-      if (any_reversed) flip_reversed_parts(mesh, topology, parts);
-      integrals = (any_reversed || !concurrent) ? solid_integrals(mesh, reference) : solid;
-    }
-    report.volume = integrals.measure;
-    if (!(report.volume > 0.0)) {
-      fail(source, "encloses a non-positive volume (" + format_number(report.volume) +
-                       " m^3) once cavities are taken out");
-    }
-    density = options.mass ? *options.mass / report.volume : options.density.value_or(1000.0);
-    report.mass_properties = mass_properties(integrals, reference, density);
+/// Thin shell: area-weighted, orientation and closure do not matter.
+void shell_properties(const TriangleMesh& mesh, const Eigen::Vector3d& reference,
+                      const MassOptions& options, MeshReport& report) {
+  report.thickness = *options.shell_thickness;
+  const MomentIntegrals integrals = surface_integrals(mesh, reference);
+  report.area = integrals.measure;
+  report.volume = report.area * report.thickness;
+  if (!(report.area > 0.0)) fail(report.source, "has zero surface area");
+  report.density = options.mass ? *options.mass / report.volume : options.density.value_or(1000.0);
+  // Surface density rho * t turns area integrals into mass integrals.
+  report.mass_properties = mass_properties(integrals, reference, report.density * report.thickness);
+}
+
+/// A closed surface must have no boundary and a consistent winding.
+void require_closed_and_consistent(const Topology& topology, const std::string& source) {
+  if (topology.boundary_edges > 0) {
+    fail(source, "the surface is open (" + plural(topology.boundary_edges, "boundary edge") +
+                     "), so it encloses no volume; for a thin sheet or open surface use "
+                     "--shell THICKNESS");
   }
-  report.density = density;
+  if (topology.inconsistent_edges > 0) {
+    fail(source, "inconsistent winding: " + plural(topology.inconsistent_edges, "edge") +
+                     " used twice in the same direction (neighbouring faces disagree on "
+                     "inside and outside)");
+  }
+}
+
+/// One part: its orientation is the sign of the volume; flipping every face negates all three
+/// integrals, so no second pass is needed.
+MomentIntegrals single_part_integrals(const TriangleMesh& mesh, const Eigen::Vector3d& reference,
+                                      TopologyPass& pass, MeshReport& report) {
+  MomentIntegrals solid = pass.concurrent ? pass.solid : solid_integrals(mesh, reference);
+  if (!(std::abs(solid.measure) > 1e-9 * solid.absolute_measure)) fail_zero_volume(report.source);
+  if (solid.measure < 0.0) {
+    solid.measure = -solid.measure;
+    solid.first = -solid.first;
+    solid.second = -solid.second;
+    report.flipped = true;
+    report.warnings.push_back("the faces point inward (negative volume): flipped them all");
+  }
+  return solid;
+}
+
+/// Several parts: each oriented (cavities, lone inward parts flipped), then integrated again
+/// when some part was flipped or the integrals were not summed yet.
+MomentIntegrals multi_part_integrals(TriangleMesh& mesh, const Eigen::Vector3d& reference,
+                                     const TopologyPass& pass, MeshReport& report) {
+  std::vector<PartSummary> parts = summarize_parts(mesh, pass.topology, reference);
+  double signed_total = 0.0, absolute_total = 0.0;
+  for (const PartSummary& part : parts) {
+    signed_total += part.signed_volume;
+    absolute_total += part.absolute_volume;
+  }
+  // Zero volume relative to the rounding scale of the signed sum (scale-free).
+  if (!(std::abs(signed_total) > 1e-9 * absolute_total)) fail_zero_volume(report.source);
+  orient_parts(parts, signed_total, mesh, pass.topology, report);
+  const bool any_reversed =
+      std::any_of(parts.begin(), parts.end(), [](const PartSummary& p) { return p.reversed; });
+  if (any_reversed) flip_reversed_parts(mesh, pass.topology, parts);
+  return (any_reversed || !pass.concurrent) ? solid_integrals(mesh, reference) : pass.solid;
+}
+
+/// Solid body: closed, consistently wound, every part oriented, positive volume.
+void solid_properties(TriangleMesh& mesh, const Eigen::Vector3d& reference,
+                      const MassOptions& options, TopologyPass& pass, MeshReport& report) {
+  require_closed_and_consistent(pass.topology, report.source);
+  const MomentIntegrals integrals = pass.topology.parts == 1
+                                        ? single_part_integrals(mesh, reference, pass, report)
+                                        : multi_part_integrals(mesh, reference, pass, report);
+  report.volume = integrals.measure;
+  if (!(report.volume > 0.0)) {
+    fail(report.source, "encloses a non-positive volume (" + format_number(report.volume) +
+                            " m^3) once cavities are taken out");
+  }
+  report.density = options.mass ? *options.mass / report.volume : options.density.value_or(1000.0);
+  report.mass_properties = mass_properties(integrals, reference, report.density);
+}
+
+}  // namespace
+
+MeshReport analyze_mesh(TriangleMesh mesh, const MassOptions& options, const std::string& source,
+                        bool distinct_positions) {
+  check_options(options, source);
+  MeshReport report;
+  report.source = source;
+  report.input_triangles = mesh.triangles.size();
+  report.shell = options.shell_thickness.has_value();
+  if (mesh.triangles.empty()) fail(source, "contains no triangles");
+
+  scale_positions(mesh, options.scale, source);             // metres, finite
+  weld_and_clean(mesh, distinct_positions, report);         // welded, no degenerate triangles
+  const Eigen::Vector3d reference = bound(mesh, report);    // bounding-box centre
+  TopologyPass pass = check_topology(mesh, reference, report);  // edges and parts
+  if (report.shell) {
+    shell_properties(mesh, reference, options, report);
+  } else {
+    solid_properties(mesh, reference, options, pass, report);
+  }
 
   // Principal frame, and the checks any rigid body must pass.
   report.principal = principal_frame(report.mass_properties.inertia);

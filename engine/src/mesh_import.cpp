@@ -20,7 +20,7 @@
 
 #include "binary_stl.hpp"
 #include "engine/input_error.hpp"
-#include "engine/vertex_welding.hpp"
+#include "vertex_welding.hpp"
 #include "split_in_two.hpp"
 
 namespace tumble::engine {

@@ -2,7 +2,7 @@
 //
 // Both run on meshes of millions of triangles inside `tumble inspect`, whose budget is the time
 // assimp takes to read the file, so neither uses node-based hash maps:
-// - welding: see engine/vertex_welding.hpp;
+// - welding: see vertex_welding.hpp;
 // - edge use is counted by bucketing each undirected edge under its smaller vertex (a CSR
 //   layout), sorting the few edges of each bucket and comparing directions.
 #include "engine/mesh_topology.hpp"
@@ -16,8 +16,8 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "engine/prefetch.hpp"
-#include "engine/vertex_welding.hpp"
+#include "prefetch.hpp"
+#include "vertex_welding.hpp"
 
 namespace tumble::engine {
 namespace {
@@ -35,7 +35,7 @@ class DisjointSets {
     }
     return x;
   }
-  /// Hints that x's parent will be needed soon (engine/prefetch.hpp).
+  /// Hints that x's parent will be needed soon (prefetch.hpp).
   void prefetch(std::uint32_t x) const { detail::prefetch<true>(parent_.data() + x); }
   void unite(std::uint32_t a, std::uint32_t b) {
     a = find(a);
@@ -195,7 +195,7 @@ void find_parts(const TriangleMesh& mesh, Topology& topology) {
   // Connected parts through shared vertices, numbered in order of first triangle.
   const std::size_t vertex_count = mesh.positions.size();
   topology.parts = 0;
-  // Each triangle's parents are fetched a few triangles ahead (engine/prefetch.hpp).
+  // Each triangle's parents are fetched a few triangles ahead (prefetch.hpp).
   DisjointSets sets(vertex_count);
   const std::size_t triangle_count = mesh.triangles.size();
   for (std::size_t i = 0; i < triangle_count; ++i) {

@@ -11,11 +11,6 @@ struct Overloaded : Ts... {
   using Ts::operator()...;
 };
 
-/// World position of the rotation centre.
-Eigen::Vector3d rotation_centre(const BodyModel& body, const BodyState& state) {
-  return body.pivoted ? body.pivot : state.position;
-}
-
 }  // namespace
 
 bool BodyModel::torque_free() const {
@@ -97,6 +92,25 @@ double energy(const BodyModel& body, const BodyState& state) {
     }
   }
   return total;
+}
+
+Invariants invariants(const BodyModel& body, const BodyState& state) {
+  return {energy(body, state), state.angular_momentum.norm()};
+}
+
+Invariants total_invariants(const std::vector<BodyModel>& bodies,
+                            const std::vector<BodyState>& states, InvariantSum which) {
+  const bool all = which == InvariantSum::kAll;
+  Invariants sum;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (all || bodies[i].conservative()) sum.energy += energy(bodies[i], states[i]);
+    if (all || bodies[i].torque_free()) sum.momentum += states[i].angular_momentum.norm();
+  }
+  return sum;
+}
+
+Eigen::Vector3d rotation_centre(const BodyModel& body, const BodyState& state) {
+  return body.pivoted ? body.pivot : state.position;
 }
 
 void update_pivot_kinematics(const BodyModel& body, BodyState& state) {

@@ -105,6 +105,22 @@ TorqueFreeMotion::TorqueFreeMotion(const Eigen::Vector3d& moments,
     return;
   }
 
+  const InternalStart start = enter_internal_frame(jn, w);  // axes sorted and signed
+  if (!solve_elliptic(start)) {                             // amplitudes, rate, parameter
+    regime_ = Regime::kPermanentRotation;
+    return;
+  }
+  set_initial_argument(start.omega);  // signs and u0
+  set_half_period();                  // K and the precession per half period
+
+  // Anchor the auxiliary frame at the state at t = 0 computed through the same path at() uses:
+  // at(0) then returns the initial orientation to rounding, and phi(0) cancels out.
+  const Local local0 = local(0.0);
+  prefix_ = orientation0_ * to_internal_q_.conjugate() * local0.euler.conjugate();
+}
+
+TorqueFreeMotion::InternalStart TorqueFreeMotion::enter_internal_frame(const Eigen::Vector3d& jn,
+                                                                      const Eigen::Vector3d& w) {
   // Sort the axes and pick the circled axis from the sign of d = G^2 - 2T I2.
   std::array<int, 3> order{0, 1, 2};
   std::stable_sort(order.begin(), order.end(), [&](int x, int y) { return jn[x] < jn[y]; });
@@ -130,21 +146,22 @@ TorqueFreeMotion::TorqueFreeMotion(const Eigen::Vector3d& moments,
   to_internal_ = p;
   to_internal_q_ = Eigen::Quaterniond(p);
   j_ = Eigen::Vector3d(jn[axis[0]], jn[axis[1]], jn[axis[2]]);
+  return {wi, about_largest};
+}
+
+bool TorqueFreeMotion::solve_elliptic(const InternalStart& start) {
   const double j1 = j_.x();
   const double j2 = j_.y();
   const double j3 = j_.z();
-  const double w1 = wi.x();
-  const double w2 = wi.y();
-  const double w3 = wi.z();
+  const double w1 = start.omega.x();
+  const double w2 = start.omega.y();
+  const double w3 = start.omega.z();
 
   // Invariant combinations as sums of same-signed terms.
   const double a = j1 * (j3 - j1) * w1 * w1 + j2 * (j3 - j2) * w2 * w2;
   const double b = j2 * (j2 - j1) * w2 * w2 + j3 * (j3 - j1) * w3 * w3;
   const double d = j1 * (j1 - j2) * w1 * w1 + j3 * (j3 - j2) * w3 * w3;
-  if (a == 0.0 || b == 0.0) {
-    regime_ = Regime::kPermanentRotation;
-    return;
-  }
+  if (a == 0.0 || b == 0.0) return false;
 
   // Amplitudes, rate, parameter (engine/PHYSICS.md §4, L&L §37).
   amplitude_ = Eigen::Vector3d(std::sqrt(a / (j1 * (j3 - j1))), std::sqrt(a / (j2 * (j3 - j2))),
@@ -154,36 +171,37 @@ TorqueFreeMotion::TorqueFreeMotion(const Eigen::Vector3d& moments,
   m1_ = std::clamp((j3 - j1) * d / ((j3 - j2) * b), 0.0, 1.0);
   if (m1_ == 0.0) m_ = 1.0;
   regime_ = m1_ == 0.0 ? Regime::kSeparatrix
-                       : (about_largest ? Regime::kAboutLargestAxis : Regime::kAboutSmallestAxis);
+                       : (start.about_largest ? Regime::kAboutLargestAxis
+                                              : Regime::kAboutSmallestAxis);
   n_ = -j3 * (j2 - j1) / (j1 * (j3 - j2));
-  g_ = j_.cwiseProduct(wi).norm();
+  g_ = j_.cwiseProduct(start.omega).norm();
   c_ = g_ * (j3 - j1) / (j1 * j3);
+  return true;
+}
 
+void TorqueFreeMotion::set_initial_argument(const Eigen::Vector3d& wi) {
   // Signs: s1 from w1; Euler's equations then fix s2 = s1 sign(J3 - J1) (w3 > 0 here).
-  s1_ = w1 >= 0.0 ? 1.0 : -1.0;
-  s2_ = j3 > j1 ? s1_ : -s1_;
+  s1_ = wi.x() >= 0.0 ? 1.0 : -1.0;
+  s2_ = j_.z() > j_.x() ? s1_ : -s1_;
 
   // Initial argument u0 in [-K, K] from cn(u0) = |w1| / A1 >= 0, sn(u0) = s2 w2 / A2.
-  double cn0 = std::abs(w1) / amplitude_.x();
-  double sn0 = s2_ * w2 / amplitude_.y();
+  double cn0 = std::abs(wi.x()) / amplitude_.x();
+  double sn0 = s2_ * wi.y() / amplitude_.y();
   const double r0 = std::hypot(cn0, sn0);
   cn0 /= r0;
   sn0 /= r0;
   u0_ = sn0 * carlson_rf(cn0 * cn0, cn0 * cn0 + m1_ * sn0 * sn0, 1.0);
+}
 
+void TorqueFreeMotion::set_half_period() {
   // Quarter period and the precession gained per half period.
   parameter_ = elliptic_parameter(m_, m1_);
   k_ = parameter_.quarter;
   if (std::isfinite(k_)) {
     const double pi_complete = n_ == 0.0 ? k_ : k_ + n_ / 3.0 * carlson_rj(0.0, m1_, 1.0, 1.0 - n_);
-    phi_half_ = 2.0 / lambda_ * (g_ * k_ / j3 + c_ * pi_complete);
+    phi_half_ = 2.0 / lambda_ * (g_ * k_ / j_.z() + c_ * pi_complete);
     phi_half_mod_ = std::remainder(phi_half_, 4.0 * kPi);
   }
-
-  // Anchor the auxiliary frame at the state at t = 0 computed through the same path at() uses:
-  // at(0) then returns the initial orientation to rounding, and phi(0) cancels out.
-  const Local start = local(0.0);
-  prefix_ = orientation0_ * to_internal_q_.conjugate() * start.euler.conjugate();
 }
 
 double TorqueFreeMotion::pi_tilde(double u_reduced, double sn, double cn, double dn) const {

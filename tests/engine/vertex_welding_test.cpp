@@ -12,7 +12,7 @@
 #include <span>
 #include <vector>
 
-#include "engine/vertex_welding.hpp"
+#include "vertex_welding.hpp"  // engine/src: private to the engine
 
 namespace tumble::engine {
 namespace {

@@ -198,7 +198,7 @@ void scene_section(std::ostream& out, const BenchOutcome& outcome, std::size_t s
     }
   }
   if (const auto& check = scene.reference.check) {
-    out << "- reference check (dopri 1e-13 against 1e-12): orientation "
+    out << "- reference check (" << check->runs << "): orientation "
         << number(check->orientation, "%.2e") << " rad, world omega "
         << number(check->omega, "%.2e") << ", world L " << number(check->momentum, "%.2e")
         << " (relative)\n";

@@ -3,10 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <sstream>
 
-#include "engine/input_error.hpp"
-#include "engine/integrators.hpp"
-#include "engine/torque_free_exact.hpp"
+#include "engine/reference_motion.hpp"
 
 namespace tumble::app {
 namespace {
@@ -21,28 +20,15 @@ ReferenceState reference_state(const engine::BodyModel& body, const engine::Body
   return {state.orientation, engine::angular_velocity(body, state), state.angular_momentum};
 }
 
-/// Samples of an adaptive run at `tolerance` with output step grid.interval.
-std::vector<std::vector<ReferenceState>> dopri_samples(
-    const std::vector<engine::BodyModel>& bodies, const std::vector<engine::BodyState>& initial,
-    engine::SimulationSettings settings, const SampleGrid& grid, double tolerance) {
-  settings.integrator = engine::IntegratorKind::kDopri;
-  settings.dt = grid.interval;
-  settings.duration = grid.duration;
-  settings.tolerance = tolerance;
-  engine::Simulation simulation(bodies, initial, settings);
+/// A reference's samples on the grid.
+std::vector<std::vector<ReferenceState>> grid_samples(const engine::ReferenceMotion& motion,
+                                                      const std::vector<engine::BodyModel>& bodies,
+                                                      const SampleGrid& grid) {
   std::vector<std::vector<ReferenceState>> samples;
-  samples.reserve(grid.count());
-  while (simulation.step()) {
+  for (const std::vector<engine::BodyState>& states : motion.sample(grid.interval, grid.duration)) {
     std::vector<ReferenceState> row;
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-      row.push_back(reference_state(bodies[i], simulation.states()[i]));
-    }
+    for (std::size_t i = 0; i < bodies.size(); ++i) row.push_back(reference_state(bodies[i], states[i]));
     samples.push_back(std::move(row));
-  }
-  if (const auto& blow_up = simulation.blow_up()) {
-    throw engine::InputError("the reference (dopri at tolerance " + std::to_string(tolerance) +
-                             ") blew up at t = " + std::to_string(blow_up->time) + " s: " +
-                             blow_up->reason);
   }
   return samples;
 }
@@ -64,38 +50,20 @@ double relative_difference(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 }
 
 Reference make_reference(const std::vector<engine::BodyModel>& bodies,
-                         const std::vector<engine::BodyState>& initial,
-                         const engine::SimulationSettings& settings, const SampleGrid& grid) {
+                         const std::vector<engine::BodyState>& initial, const SampleGrid& grid) {
+  const engine::ReferenceMotion motion(bodies, initial);
   Reference reference;
-  const bool torque_free = std::all_of(bodies.begin(), bodies.end(),
-                                       [](const engine::BodyModel& b) { return b.torque_free(); });
-  if (torque_free) {
-    // Closed form at every sample; omega_body = J^-1 R^T L at t = 0.
-    reference.description = "exact torque-free solution (Jacobi elliptic functions)";
-    std::vector<engine::TorqueFreeMotion> motions;
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-      const Eigen::Vector3d omega_body =
-          (initial[i].orientation.conjugate() * initial[i].angular_momentum)
-              .cwiseQuotient(bodies[i].moments);
-      motions.emplace_back(bodies[i].moments, initial[i].orientation, omega_body);
-    }
-    for (std::size_t k = 1; k <= grid.count(); ++k) {
-      std::vector<ReferenceState> row;
-      for (std::size_t i = 0; i < bodies.size(); ++i) {
-        const auto exact = motions[i].at(grid.time(k));
-        row.push_back({exact.orientation, exact.orientation * exact.omega_body,
-                       motions[i].angular_momentum_world()});
-      }
-      reference.samples.push_back(std::move(row));
-    }
-    return reference;
-  }
+  reference.description = motion.description();
+  reference.samples = grid_samples(motion, bodies, grid);
+  const std::optional<engine::ReferenceMotion> check_run = motion.check_run();
+  if (!check_run) return reference;
 
-  // Forced: dopri at 1e-13, checked against 1e-12.
-  reference.description = "dopri at tolerance 1e-13";
-  reference.samples = dopri_samples(bodies, initial, settings, grid, kReferenceTolerance);
-  const auto check = dopri_samples(bodies, initial, settings, grid, kCheckTolerance);
+  // Forced: how far the reference is from its check run.
+  const auto check = grid_samples(*check_run, bodies, grid);
   ReferenceCheck figures;
+  std::ostringstream runs;  // "dopri 1e-13 against 1e-12"
+  runs << motion.label() << " against " << check_run->tolerance();
+  figures.runs = runs.str();
   for (std::size_t k = 0; k < check.size() && k < reference.samples.size(); ++k) {
     for (std::size_t i = 0; i < bodies.size(); ++i) {
       const ReferenceState& a = check[k][i];
@@ -114,8 +82,9 @@ ErrorMeter::ErrorMeter(const std::vector<engine::BodyModel>& bodies,
                        const std::vector<engine::BodyState>& initial, const Reference& reference)
     : bodies_(bodies), reference_(reference) {
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    energy0_.push_back(engine::energy(bodies[i], initial[i]));
-    momentum0_.push_back(initial[i].angular_momentum.norm());
+    const engine::Invariants start = engine::invariants(bodies[i], initial[i]);
+    energy0_.push_back(start.energy);
+    momentum0_.push_back(start.momentum);
   }
 }
 
@@ -132,10 +101,10 @@ void ErrorMeter::observe(std::size_t k, const std::vector<engine::BodyState>& st
         f.omega_final, relative_difference(engine::angular_velocity(bodies_[i], state), ref.omega));
     f.momentum_final =
         std::max(f.momentum_final, relative_difference(state.angular_momentum, ref.momentum));
-    f.energy_drift_max =
-        std::max(f.energy_drift_max, drift(engine::energy(bodies_[i], state), energy0_[i]));
+    const engine::Invariants now = engine::invariants(bodies_[i], state);
+    f.energy_drift_max = std::max(f.energy_drift_max, drift(now.energy, energy0_[i]));
     f.momentum_norm_drift_max =
-        std::max(f.momentum_norm_drift_max, drift(state.angular_momentum.norm(), momentum0_[i]));
+        std::max(f.momentum_norm_drift_max, drift(now.momentum, momentum0_[i]));
   }
   f.orientation_max = std::max(f.orientation_max, f.orientation_final);
   f.omega_max = std::max(f.omega_max, f.omega_final);

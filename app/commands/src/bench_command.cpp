@@ -221,7 +221,7 @@ int bench(const BenchOptions& options, std::ostream& out, std::ostream& err) {
     // References, once per scene.
     for (BenchScene& scene : outcome.scenes) {
       try {
-        scene.reference = make_reference(scene.bodies, scene.initial, scene.settings, scene.grid);
+        scene.reference = make_reference(scene.bodies, scene.initial, scene.grid);
       } catch (const InputError& error) {
         throw InputError(scene.file.string() + ": " + error.what());
       }

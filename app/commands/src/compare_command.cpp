@@ -37,6 +37,7 @@
 #include "app/support/interrupt_guard.hpp"
 #include "engine/input_error.hpp"
 #include "engine/integrators.hpp"
+#include "engine/reference_motion.hpp"
 #include "engine/simulation.hpp"
 #include "app/support/progress_bar.hpp"
 #include "render/image_sink.hpp"
@@ -66,8 +67,6 @@ constexpr std::array<NamedColour, 8> kRunPalette = {{{"orange", {0.95f, 0.50f, 0
 constexpr Rgba kGhostColour{0.40f, 0.40f, 0.40f, 0.30f};
 /// Grey level of the gaps around and between the grid's tiles and of empty tiles.
 constexpr std::uint8_t kGapGrey = 24;
-/// The reference of the overlay when some body has torques (dopri's local error tolerance).
-constexpr double kReferenceTolerance = 1e-12;
 constexpr int kMinTileSide = 16;
 
 
@@ -206,17 +205,16 @@ int compare_scene(const CompareOptions& options, const InterruptGuard& guard, st
   const CompiledScene compiled = compile_scene(runs.front().plan.scene, /*keep_geometry=*/true);
   for (Run& run : runs) run.job = std::make_unique<RenderJob>(run.plan, compiled, renderer);
 
-  // The overlay's reference: the exact solution when it applies, tight dopri otherwise.
+  // The overlay's reference (engine::ReferenceMotion): exact or dopri, run as a job.
   std::optional<Run> reference;
   if (layout == CompareLayout::kOverlay) {
-    const auto& bodies = runs.front().job->simulation().bodies();
-    const bool torque_free = std::all_of(bodies.begin(), bodies.end(),
-                                         [](const auto& body) { return body.torque_free(); });
+    const engine::Simulation& first = runs.front().job->simulation();
+    const engine::ReferenceMotion motion(first.bodies(), first.initial_states());
     reference.emplace();
-    reference->integrator = torque_free ? "exact" : "dopri";
+    reference->integrator = engine::integrator_info(motion.integrator()).name;
     reference->plan = plan_render(run_options(options, reference->integrator));
     reference->plan.settings = runs.front().plan.settings;
-    if (!torque_free) reference->plan.scene.tolerance = kReferenceTolerance;
+    reference->plan.scene.tolerance = motion.tolerance();
     reference->job = std::make_unique<RenderJob>(reference->plan, compiled, renderer);
   }
 
@@ -295,7 +293,8 @@ CLI::App& add_compare_command(CLI::App& cli, CompareOptions& options) {
       "Every run uses the same dt and the same frame times as tumble render. grid: one panel "
       "per integrator, same camera, each with its energy and |L| drift plots. overlay: every "
       "run in its own translucent colour over a grey ghost of the reference (exact for "
-      "torque-free scenes, otherwise dopri at tolerance 1e-12). A run that blows up holds its "
+      "torque-free scenes, otherwise dopri at tolerance " +
+      printf_number(engine::kReferenceTolerance, "%g") + "). A run that blows up holds its "
       "last good state and says when. Exit status: 0 done, 1 bad scene/option/output or ffmpeg "
       "failure, 3 some run blew up (the output is still complete), 130 interrupted (nothing "
       "written).");

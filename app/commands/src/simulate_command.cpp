@@ -16,7 +16,7 @@
 #include "engine/input_error.hpp"
 #include "engine/integrators.hpp"
 #include "engine/simulation.hpp"
-#include "engine/torque_free_exact.hpp"
+#include "engine/reference_motion.hpp"
 
 namespace tumble::app {
 namespace {
@@ -59,12 +59,12 @@ struct InvariantMonitor {
   double energy_final = 0.0;
   double momentum_final = 0.0;
 
-  InvariantMonitor(const engine::BodyModel& body, const engine::BodyState& state)
-      : energy0(engine::energy(body, state)), momentum0(state.angular_momentum.norm()) {}
+  explicit InvariantMonitor(const engine::Invariants& start)
+      : energy0(start.energy), momentum0(start.momentum) {}
 
-  void observe(const engine::BodyModel& body, const engine::BodyState& state) {
-    energy_final = drift(engine::energy(body, state), energy0);
-    momentum_final = drift(state.angular_momentum.norm(), momentum0);
+  void observe(const engine::Invariants& now) {
+    energy_final = drift(now.energy, energy0);
+    momentum_final = drift(now.momentum, momentum0);
     energy_max = std::max(energy_max, energy_final);
     momentum_max = std::max(momentum_max, momentum_final);
   }
@@ -76,12 +76,9 @@ std::optional<double> exact_orientation_error(const engine::BodyModel& body,
                                               const engine::BodyState& initial,
                                               const engine::BodyState& state, double time) {
   if (!body.torque_free()) return std::nullopt;
-  // Initial angular velocity in principal axes: J^-1 R^T L.
-  const Eigen::Vector3d omega_body =
-      (initial.orientation.conjugate() * initial.angular_momentum).cwiseQuotient(body.moments);
   try {
-    const engine::TorqueFreeMotion exact(body.moments, initial.orientation, omega_body);
-    return engine::orientation_angle(exact.at(time).orientation, state.orientation);
+    const engine::ReferenceMotion exact({body}, {initial});  // exact: the body is torque-free
+    return engine::orientation_angle(exact.at(time).front().orientation, state.orientation);
   } catch (const std::exception&) {
     return std::nullopt;
   }
@@ -146,7 +143,7 @@ int simulate(const SimulateOptions& options, RunSummary& summary, std::ostream& 
   summary.total_steps = simulation.total_steps();
   std::vector<InvariantMonitor> monitors;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    monitors.emplace_back(bodies[i], simulation.initial_states()[i]);
+    monitors.emplace_back(engine::invariants(bodies[i], simulation.initial_states()[i]));
   }
 
   // Step, timing the steps only; watch the invariants every step, write every Nth.
@@ -160,7 +157,7 @@ int simulate(const SimulateOptions& options, RunSummary& summary, std::ostream& 
     stepping += std::chrono::steady_clock::now() - start;
     if (!good) break;
     for (std::size_t i = 0; i < bodies.size(); ++i) {
-      monitors[i].observe(bodies[i], simulation.states()[i]);
+      monitors[i].observe(engine::invariants(bodies[i], simulation.states()[i]));
     }
     if (csv && (simulation.steps() % every == 0 || simulation.finished())) {
       csv->write_rows(simulation.time(), bodies, simulation.states());

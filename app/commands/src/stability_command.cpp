@@ -6,7 +6,7 @@
 // of torque-free ones, summed over bodies) every step and keeps their signed extremes, so
 // growth (drift, blow-up) and loss (damping) are told apart. The error at the end is measured
 // against the exact torque-free solution when every body is torque-free, else against one
-// dopri run at tolerance 1e-12 per case.
+// dopri run at engine::kReferenceTolerance per case (engine::ReferenceMotion).
 #include "app/commands/stability_command.hpp"
 
 #include "app/support/csv_writer.hpp"
@@ -35,16 +35,14 @@
 #include "app/analysis/stability_suite.hpp"
 #include "engine/input_error.hpp"
 #include "engine/integrators.hpp"
+#include "engine/reference_motion.hpp"
 #include "engine/simulation.hpp"
-#include "engine/torque_free_exact.hpp"
 
 namespace tumble::app {
 namespace {
 
 using engine::InputError;
 namespace fs = std::filesystem;
-
-constexpr double kReferenceTolerance = 1e-12;
 
 
 /// Splits a comma-separated option value; empty items are errors naming the option.
@@ -87,19 +85,9 @@ std::vector<StabilityCase> gather_cases(const StabilityOptions& options, std::st
 }
 
 /// Energy of the conservative bodies and |L| of the torque-free ones, each summed.
-struct Invariants {
-  double energy = 0.0;
-  double momentum = 0.0;
-};
-
-Invariants invariants(const std::vector<engine::BodyModel>& bodies,
-                      const std::vector<engine::BodyState>& states) {
-  Invariants sum;
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    if (bodies[i].conservative()) sum.energy += engine::energy(bodies[i], states[i]);
-    if (bodies[i].torque_free()) sum.momentum += states[i].angular_momentum.norm();
-  }
-  return sum;
+engine::Invariants invariants(const std::vector<engine::BodyModel>& bodies,
+                              const std::vector<engine::BodyState>& states) {
+  return engine::total_invariants(bodies, states, engine::InvariantSum::kWhereConserved);
 }
 
 /// The reference states at the end of a case, and what they come from.
@@ -108,49 +96,15 @@ struct Reference {
   std::vector<engine::BodyState> states;
 };
 
-/// Exact torque-free motion for every body (position in closed form under gravity), else
-/// one dopri run at kReferenceTolerance.
+/// The case's engine::ReferenceMotion at its end (dopri with a hundred output steps); "none"
+/// when that run fails.
 Reference reference_for(const StabilityCase& c) {
-  Reference reference;
-  const double t = c.duration;
-  const bool torque_free = std::all_of(c.bodies.begin(), c.bodies.end(),
-                                       [](const engine::BodyModel& b) { return b.torque_free(); });
-  if (torque_free) {
-    for (std::size_t i = 0; i < c.bodies.size(); ++i) {
-      const engine::BodyModel& body = c.bodies[i];
-      engine::BodyState start = c.initial[i];
-      engine::update_pivot_kinematics(body, start);
-      const Eigen::Vector3d omega_body =
-          (start.orientation.conjugate() * start.angular_momentum).cwiseQuotient(body.moments);
-      const engine::TorqueFreeMotion exact(body.moments, start.orientation, omega_body);
-      engine::BodyState end = start;
-      end.orientation = exact.at(t).orientation;
-      end.angular_momentum = start.angular_momentum;
-      Eigen::Vector3d g = Eigen::Vector3d::Zero();
-      for (const engine::ForceTerm& term : body.forces) {
-        if (const auto* gravity = std::get_if<engine::Gravity>(&term)) g += gravity->acceleration;
-      }
-      end.position = start.position + start.velocity * t + 0.5 * t * t * g;
-      end.velocity = start.velocity + t * g;
-      engine::update_pivot_kinematics(body, end);
-      reference.states.push_back(end);
-    }
-    reference.kind = "exact";
-    return reference;
+  const engine::ReferenceMotion motion(c.bodies, c.initial);
+  try {
+    return {motion.label(), motion.sample(c.duration / 100.0, c.duration).back()};
+  } catch (const InputError&) {
+    return {};
   }
-  engine::SimulationSettings settings;
-  settings.integrator = engine::IntegratorKind::kDopri;
-  settings.duration = t;
-  settings.dt = t / 100.0;
-  settings.tolerance = kReferenceTolerance;
-  settings.blowup_factor = 1e300;
-  engine::Simulation simulation(c.bodies, c.initial, settings);
-  while (simulation.step()) {
-  }
-  if (simulation.blow_up()) return reference;
-  reference.kind = "dopri 1e-12";
-  reference.states = simulation.states();
-  return reference;
 }
 
 /// One run of the sweep.
@@ -211,7 +165,7 @@ RunRecord run_one(const StabilityCase& c, const engine::IntegratorInfo& info, do
     ch.energy_applies = ch.energy_applies || body.conservative();
     ch.momentum_applies = ch.momentum_applies || body.torque_free();
   }
-  const Invariants start = invariants(simulation.bodies(), simulation.states());
+  const engine::Invariants start = invariants(simulation.bodies(), simulation.states());
   const double energy_scale =
       c.energy_scale ? *c.energy_scale : (start.energy != 0.0 ? std::abs(start.energy) : 1.0);
   const std::size_t late_from = record.total_steps - record.total_steps / 4;
@@ -220,7 +174,7 @@ RunRecord run_one(const StabilityCase& c, const engine::IntegratorInfo& info, do
   const double momentum_scale = start.momentum != 0.0 ? start.momentum : 1.0;
   const auto begin = std::chrono::steady_clock::now();
   while (simulation.step()) {
-    const Invariants now = invariants(simulation.bodies(), simulation.states());
+    const engine::Invariants now = invariants(simulation.bodies(), simulation.states());
     const double de = (now.energy - start.energy) / energy_scale;
     const double dl = (now.momentum - start.momentum) / momentum_scale;
     ch.energy_final = de;
@@ -360,7 +314,7 @@ const char* kRules =
     "Cells of drifting and damped runs show the largest signed excursion over the run (+gain or "
     "-loss). Error: orientation angle (rad) and position (m) at the end against the exact "
     "torque-free solution when every body is torque-free, else against one dopri run at "
-    "tolerance 1e-12 (`reference` column of the CSV; none when that run failed). "
+    "tolerance 1e-13 (`reference` column of the CSV; none when that run failed). "
     "`skipped` runs were not made (the reason is in the CSV's `note`).\n";
 
 std::string markdown_text(const std::string& suite, const std::vector<StabilityCase>& cases,

@@ -81,11 +81,6 @@ struct BodyLook {
   }
 };
 
-/// The point the body turns about: its pivot, or its centre of mass when free.
-Eigen::Vector3d rotation_centre(const engine::BodyModel& body, const engine::BodyState& state) {
-  return state.position - state.orientation * body.center_offset;
-}
-
 /// The drawn geometry of a body in its body frame: its mesh, or (made in `box`) the uniform
 /// box with its mass and moments about the centre of mass, turned from its principal axes into
 /// the body frame.
@@ -171,14 +166,9 @@ InvariantDrift::InvariantDrift(const std::vector<engine::BodyModel>& bodies,
 InvariantDrift::Values InvariantDrift::operator()(
     const std::vector<engine::BodyModel>& bodies,
     const std::vector<engine::BodyState>& states) const {
-  double energy = 0.0;
-  double momentum = 0.0;
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    energy += engine::energy(bodies[i], states[i]);
-    momentum += states[i].angular_momentum.norm();
-  }
-  return {(energy - initial_energy_) / energy_scale_,
-          (momentum - initial_momentum_) / momentum_scale_};
+  const engine::Invariants sum = engine::total_invariants(bodies, states);
+  return {(sum.energy - initial_energy_) / energy_scale_,
+          (sum.momentum - initial_momentum_) / momentum_scale_};
 }
 
 FrameBuilder::FrameBuilder(const SceneDescription& description, const CompiledScene& scene,
@@ -329,7 +319,7 @@ void FrameBuilder::Impl::add_body_items(const engine::BodyModel& body,
                                         render::DrawList& list) const {
   const BodyLook& look = looks[index];
   const Eigen::Quaterniond body_turn = engine::body_orientation(body, state);
-  const Eigen::Vector3d centre = rotation_centre(body, state);
+  const Eigen::Vector3d centre = engine::rotation_centre(body, state);
   const auto thickness = static_cast<float>(0.045 * look.radius);
 
   // The body itself.

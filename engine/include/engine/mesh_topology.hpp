@@ -11,7 +11,7 @@ namespace tumble::engine {
 
 /// Merges vertices whose positions are bit-identical (with -0 equal to +0), keeping the
 /// vertices in order of first use, and rewrites the triangles. Returns how many vertices were
-/// merged away. Linear in the vertex count (engine/vertex_welding.hpp; no assimp post-process).
+/// merged away. Linear in the vertex count (engine/src/vertex_welding.hpp; no assimp post-process).
 std::size_t weld_by_position(TriangleMesh& mesh);
 
 /// Removes triangles that use a vertex twice (after welding, the only exact degeneracy that

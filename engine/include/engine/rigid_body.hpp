@@ -90,6 +90,31 @@ Wrench wrench(const BodyModel& body, const BodyState& state, const Eigen::Vector
 /// Kinetic plus potential energy (gravity, springs), J.
 double energy(const BodyModel& body, const BodyState& state);
 
+/// The quantities a run watches for drift: energy (invariant when the body is conservative)
+/// and |L| (invariant when it is torque-free).
+struct Invariants {
+  double energy = 0.0;    ///< kinetic plus potential, J (as energy())
+  double momentum = 0.0;  ///< |L| about the rotation centre, kg m^2/s
+};
+
+/// Energy and |L| of one body.
+Invariants invariants(const BodyModel& body, const BodyState& state);
+
+/// Which bodies a sum of invariants takes.
+enum class InvariantSum {
+  kAll,             ///< every body's energy and |L|
+  kWhereConserved,  ///< energy of the conservative bodies, |L| of the torque-free ones
+};
+
+/// Energy and |L| summed over the bodies, in body order (states[i] belongs to bodies[i]).
+Invariants total_invariants(const std::vector<BodyModel>& bodies,
+                            const std::vector<BodyState>& states,
+                            InvariantSum which = InvariantSum::kAll);
+
+/// World position of the point the body turns about: its pivot when pivoted, otherwise its
+/// centre of mass.
+Eigen::Vector3d rotation_centre(const BodyModel& body, const BodyState& state);
+
 /// For a pivoted body, places the centre of mass from the orientation: x = pivot + R c,
 /// v = w x R c. Does nothing for a free body.
 void update_pivot_kinematics(const BodyModel& body, BodyState& state);

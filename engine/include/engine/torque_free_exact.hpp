@@ -69,6 +69,20 @@ class TorqueFreeMotion {
   Local local(double tau) const;
   double pi_tilde(double u_reduced, double sn, double cn, double dn) const;
 
+  // Construction steps, in order.
+  struct InternalStart {
+    Eigen::Vector3d omega;  // internal frame, scaled
+    bool about_largest;     // omega circles the axis of the largest moment
+  };
+  /// Sorts and signs the axes (to_internal_, j_); the scaled omega in the internal frame.
+  InternalStart enter_internal_frame(const Eigen::Vector3d& jn, const Eigen::Vector3d& w);
+  /// Amplitudes, rate, parameter and regime; false for a permanent rotation (a or b zero).
+  bool solve_elliptic(const InternalStart& start);
+  /// Signs s1, s2 and the initial argument u0.
+  void set_initial_argument(const Eigen::Vector3d& wi);
+  /// K(m) and the precession per half period.
+  void set_half_period();
+
   Regime regime_ = Regime::kAtRest;
   Eigen::Quaterniond orientation0_ = Eigen::Quaterniond::Identity();
   Eigen::Vector3d omega0_ = Eigen::Vector3d::Zero();
