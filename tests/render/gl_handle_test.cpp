@@ -276,6 +276,13 @@ TEST(OffscreenContext, HoldsOneFramebufferPerTargetAndNoFailedAttempt) {
   }
 }
 
+TEST(OffscreenContext, InvalidSizeIsTheCallersMistake) {
+  EXPECT_THAT([] { OffscreenContext(0, 10, 1); },
+              ThrowsMessage<std::invalid_argument>(HasSubstr("invalid image size 0x10")));
+  EXPECT_THAT([] { OffscreenContext(64, 20000, 1); },
+              ThrowsMessage<std::invalid_argument>(HasSubstr("invalid image size 64x20000")));
+}
+
 TEST(Renderer, ReleasedMeshesAndDestroyedRenderersLeaveNoObject) {
   for (int round = 0; round < 3; ++round) {
     Renderer renderer({kWidth, kHeight, 1});
