@@ -157,7 +157,8 @@ class FfmpegSink final : public ImageSink {
     if (error) {
       std::filesystem::remove(temporary_, error);
       finished_ = true;
-      throw InputError("cannot move video into '" + target_.string() + "': " + error.message());
+      failure_ = "cannot move video into '" + target_.string() + "': " + error.message();
+      throw InputError(failure_);
     }
     finished_ = true;
   }
@@ -301,7 +302,7 @@ class FfmpegSink final : public ImageSink {
   bool pipe_broken_ = false;
   std::size_t frames_ = 0;
   bool finished_ = false;
-  std::string failure_;  // why ffmpeg failed, repeated by later writes
+  std::string failure_;  // why the output failed, repeated by later writes
 };
 
 }  // namespace

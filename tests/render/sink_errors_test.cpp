@@ -234,6 +234,21 @@ TEST(SinkErrors, FinishedVideoLeavesNoDescriptorAndRefusesFrames) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(SinkErrors, VideoThatCannotTakeItsNameIsBadInputAndLeavesNoTemporary) {
+  const auto dir = tumble::testing::fresh_directory("rename_fails");
+  auto sink = open_image_sink(dir / "out.mp4", small_options());
+  sink->write(small_frame());
+  // Something else takes the name meanwhile: a non-empty directory cannot be replaced by a file.
+  std::filesystem::create_directories(dir / "out.mp4" / "inside");
+  const auto expected = ThrowsMessage<InputError>(
+      HasSubstr("cannot move video into '" + (dir / "out.mp4").string() + "': "));
+  EXPECT_THAT([&] { sink->finish(); }, expected);
+  EXPECT_THAT([&] { sink->write(small_frame()); }, expected);
+  EXPECT_EQ(directory_entries(dir), std::vector<std::string>{"out.mp4"});
+  EXPECT_TRUE(std::filesystem::is_directory(dir / "out.mp4" / "inside"));
+  std::filesystem::remove_all(dir);
+}
+
 TEST(SinkErrors, FinishedPngSequenceRefusesFrames) {
   const auto dir = tumble::testing::fresh_directory("finished_png");
   auto sink = open_image_sink(dir / "frames/", small_options());
