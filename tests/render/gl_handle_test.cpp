@@ -15,6 +15,7 @@
 #include "../../render/src/gl_handle.hpp"
 #include "../../render/src/gl_program.hpp"
 #include "../../render/src/gpu_mesh.hpp"
+#include "../../render/src/overlay_pass.hpp"
 #include "../../render/src/scene_passes.hpp"
 #include "render/offscreen_context.hpp"
 #include "render/renderer.hpp"
@@ -263,6 +264,32 @@ TEST(ScenePasses, ManyPassesLeaveNoGlObjectBehind) {
   // Mesa keeps the last program used alive (flagged for deletion) as the context's active
   // program; it is deleted, only not yet freed.
   EXPECT_LE(live(glIsProgram), before.programs + 1);
+  EXPECT_EQ(LiveObjects(), before);
+}
+
+TEST(OverlayPass, ManyOverlaysLeaveNoGlObjectBehind) {
+  OffscreenContext context(kWidth, kHeight, 1);
+  const LiveObjects before;
+  DrawList frame;
+  Label label;
+  label.text = "label";
+  label.screen_px = {4.0f, 4.0f};
+  frame.labels.push_back(label);
+  OverlayPanel panel;
+  panel.title = "panel";
+  panel.lines = {"a line"};
+  frame.panels.push_back(panel);
+  for (int i = 0; i < 3; ++i) {
+    OverlayPass overlay;  // the ImGui backend's program, buffers and font texture
+    overlay.draw(frame, kWidth, kHeight);
+    if (i == 0) {
+      const LiveObjects during;
+      EXPECT_EQ(during.programs, before.programs + 1);
+      EXPECT_EQ(during.textures, before.textures + 1);
+    }
+  }
+  glUseProgram(0);
+  EXPECT_LE(live(glIsProgram), before.programs + 1);  // Mesa's active program, see above
   EXPECT_EQ(LiveObjects(), before);
 }
 
