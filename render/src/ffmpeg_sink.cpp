@@ -18,6 +18,8 @@
 
 #include "frame_queue.hpp"
 #include "output_paths.hpp"
+#include "tumble/errors.hpp"
+#include "unique_fd.hpp"
 
 extern char** environ;
 
@@ -65,6 +67,30 @@ std::string last_lines(const std::string& text) {
   return lines[lines.size() - 2] + " / " + lines.back();
 }
 
+/// posix_spawn file actions, destroyed with their owner.
+class SpawnActions {
+ public:
+  SpawnActions() {
+    if (const int error = posix_spawn_file_actions_init(&actions_); error != 0) {
+      throw std::runtime_error(std::string("cannot start ffmpeg: ") + std::strerror(error));
+    }
+  }
+  ~SpawnActions() { posix_spawn_file_actions_destroy(&actions_); }
+  SpawnActions(const SpawnActions&) = delete;
+  SpawnActions& operator=(const SpawnActions&) = delete;
+  posix_spawn_file_actions_t* get() { return &actions_; }
+
+ private:
+  posix_spawn_file_actions_t actions_;
+};
+
+/// Whether a posix_spawnp error is the user's to fix: no ffmpeg on PATH, or one that cannot be
+/// executed. Anything else (fork failing for want of memory or processes) is the system's.
+bool spawn_error_is_input(int error) {
+  return error == ENOENT || error == EACCES || error == ENOEXEC || error == ENOTDIR ||
+         error == ELOOP || error == ENAMETOOLONG;
+}
+
 /// Writes all of `size` bytes; false on a broken pipe or other error.
 bool write_all(int fd, const std::uint8_t* data, std::size_t size) {
   while (size > 0) {
@@ -88,21 +114,20 @@ class FfmpegSink final : public ImageSink {
         queue_(options.queue_frames) {
     // The destination must be writable before any frame is rendered.
     require_output_directory(target_);
-    const int probe = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (probe < 0) {
-      throw std::runtime_error("cannot write '" + target_.string() + "': directory '" +
-                               output_directory(target_).string() + "': " + std::strerror(errno));
+    if (!UniqueFd(::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644))) {
+      throw InputError("cannot write '" + target_.string() + "': directory '" +
+                       output_directory(target_).string() + "': " + std::strerror(errno));
     }
-    ::close(probe);
+    // From here on a failure stops whatever started (ffmpeg, the threads), closes the pipes
+    // and removes the temporary file before it propagates.
     try {
       spawn(kind);
+      stderr_reader_ = std::thread([this] { read_stderr(); });
+      writer_ = std::thread([this] { write_loop(); });
     } catch (...) {
-      std::error_code ignored;
-      std::filesystem::remove(temporary_, ignored);
+      abort();
       throw;
     }
-    stderr_reader_ = std::thread([this] { read_stderr(); });
-    writer_ = std::thread([this] { write_loop(); });
   }
 
   ~FfmpegSink() override {
@@ -116,7 +141,8 @@ class FfmpegSink final : public ImageSink {
                                   ", expected " + std::to_string(options_.width) + "x" +
                                   std::to_string(options_.height));
     }
-    if (finished_) throw std::runtime_error("video sink '" + target_.string() + "' is closed");
+    if (!failure_.empty()) throw InputError(failure_);
+    if (finished_) throw std::logic_error("video sink '" + target_.string() + "' is closed");
     if (pipe_broken()) fail();
     queue_.push(frame, frames_);
     ++frames_;
@@ -131,8 +157,8 @@ class FfmpegSink final : public ImageSink {
     if (error) {
       std::filesystem::remove(temporary_, error);
       finished_ = true;
-      throw std::runtime_error("cannot move video into '" + target_.string() +
-                               "': " + error.message());
+      failure_ = "cannot move video into '" + target_.string() + "': " + error.message();
+      throw InputError(failure_);
     }
     finished_ = true;
   }
@@ -156,45 +182,45 @@ class FfmpegSink final : public ImageSink {
     for (std::string& argument : arguments) argv.push_back(argument.data());
     argv.push_back(nullptr);
 
-    int in[2];
-    int err[2];
-    if (::pipe2(in, O_CLOEXEC) != 0 || ::pipe2(err, O_CLOEXEC) != 0) {
-      throw std::runtime_error("cannot start ffmpeg: pipe: " + std::string(std::strerror(errno)));
+    Pipe in;
+    Pipe err;
+    if (!make_pipe(in) || !make_pipe(err)) {
+      throw std::runtime_error("cannot write '" + target_.string() +
+                               "': cannot start ffmpeg: pipe: " + std::strerror(errno));
     }
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_adddup2(&actions, in[0], STDIN_FILENO);
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_adddup2(&actions, err[1], STDERR_FILENO);
-    const int spawned = ::posix_spawnp(&child_, "ffmpeg", &actions, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    ::close(in[0]);
-    ::close(err[1]);
+    SpawnActions actions;
+    posix_spawn_file_actions_adddup2(actions.get(), in.read.get(), STDIN_FILENO);
+    posix_spawn_file_actions_addopen(actions.get(), STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_adddup2(actions.get(), err.write.get(), STDERR_FILENO);
+    pid_t child = -1;
+    const int spawned =
+        ::posix_spawnp(&child, "ffmpeg", actions.get(), nullptr, argv.data(), environ);
     if (spawned != 0) {
-      ::close(in[1]);
-      ::close(err[0]);
-      child_ = -1;
-      throw std::runtime_error(
-          spawned == ENOENT ? "cannot write '" + target_.string() + "': ffmpeg not found on PATH"
-                            : "cannot write '" + target_.string() +
-                                  "': cannot start ffmpeg: " + std::strerror(spawned));
+      const std::string message =
+          "cannot write '" + target_.string() + "': " +
+          (spawned == ENOENT ? std::string("ffmpeg not found on PATH")
+                             : "cannot start ffmpeg: " + std::string(std::strerror(spawned)));
+      if (spawn_error_is_input(spawned)) throw InputError(message);
+      throw std::runtime_error(message);
     }
-    stdin_ = in[1];
-    stderr_ = err[0];
+    child_ = child;
+    stdin_ = std::move(in.write);
+    stderr_ = std::move(err.read);
+    // The child's ends (in.read, err.write) close here, so ffmpeg sees EOF and we see its exit.
   }
 
   /// Keeps the tail of ffmpeg's stderr for error messages.
   void read_stderr() {
     char buffer[4096];
     for (;;) {
-      const ssize_t n = ::read(stderr_, buffer, sizeof buffer);
+      const ssize_t n = ::read(stderr_.get(), buffer, sizeof buffer);
       if (n < 0 && errno == EINTR) continue;
       if (n <= 0) break;
       std::lock_guard lock(mutex_);
       stderr_text_.append(buffer, static_cast<std::size_t>(n));
       if (stderr_text_.size() > 16384) stderr_text_.erase(0, stderr_text_.size() - 8192);
     }
-    ::close(stderr_);
+    stderr_.reset();
   }
 
   /// Pipes queued frames into ffmpeg; after a broken pipe, drains the queue without writing.
@@ -206,7 +232,7 @@ class FfmpegSink final : public ImageSink {
     pthread_sigmask(SIG_BLOCK, &pipe_signal, nullptr);
     FrameQueue::Item item;
     while (queue_.pop(item)) {
-      if (!pipe_broken() && !write_all(stdin_, item.rgba.data(), item.rgba.size())) {
+      if (!pipe_broken() && !write_all(stdin_.get(), item.rgba.data(), item.rgba.size())) {
         const timespec zero{0, 0};
         sigtimedwait(&pipe_signal, nullptr, &zero);  // consume the pending SIGPIPE
         std::lock_guard lock(mutex_);
@@ -227,8 +253,7 @@ class FfmpegSink final : public ImageSink {
     if (kill_child) queue_.discard();
     queue_.close();
     if (writer_.joinable()) writer_.join();
-    if (stdin_ >= 0) ::close(stdin_);
-    stdin_ = -1;
+    stdin_.reset();
     if (child_ <= 0) return -1;
     if (kill_child) ::kill(child_, SIGKILL);
     int status = 0;
@@ -251,8 +276,9 @@ class FfmpegSink final : public ImageSink {
       std::lock_guard lock(mutex_);
       message = last_lines(stderr_text_);
     }
-    throw std::runtime_error("ffmpeg failed writing '" + target_.string() + "' (exit status " +
-                             std::to_string(status) + "): " + message);
+    failure_ = "ffmpeg failed writing '" + target_.string() + "' (exit status " +
+               std::to_string(status) + "): " + message;
+    throw InputError(failure_);
   }
 
   void abort() {
@@ -267,8 +293,8 @@ class FfmpegSink final : public ImageSink {
   SinkOptions options_;
   FrameQueue queue_;
   pid_t child_ = -1;
-  int stdin_ = -1;
-  int stderr_ = -1;
+  UniqueFd stdin_;   // frames to ffmpeg
+  UniqueFd stderr_;  // ffmpeg's messages; read and closed by stderr_reader_
   std::thread writer_;
   std::thread stderr_reader_;
   std::mutex mutex_;
@@ -276,6 +302,7 @@ class FfmpegSink final : public ImageSink {
   bool pipe_broken_ = false;
   std::size_t frames_ = 0;
   bool finished_ = false;
+  std::string failure_;  // why the output failed, repeated by later writes
 };
 
 }  // namespace

@@ -5,28 +5,26 @@
 #include <string_view>
 #include <unordered_map>
 
-#include "gl.hpp"
+#include "gl_handle.hpp"
 
 namespace tumble::render::detail {
 
 class GlProgram {
  public:
   GlProgram() = default;
-  /// Compiles and links; `geometry` may be empty. Throws std::runtime_error naming `name`.
+  /// Compiles and links; `geometry` may be empty. Throws std::runtime_error naming `name`
+  /// (every shader and program made on the way is deleted). Move-only: the program is deleted
+  /// with the last owner, which needs the context current.
   GlProgram(std::string_view name, std::string_view vertex, std::string_view fragment,
             std::string_view geometry = {});
-  ~GlProgram();
-  GlProgram(GlProgram&& other) noexcept;
-  GlProgram& operator=(GlProgram&& other) noexcept;
-  GlProgram(const GlProgram&) = delete;
-  GlProgram& operator=(const GlProgram&) = delete;
 
-  void use() const { glUseProgram(program_); }
+  void use() const { glUseProgram(program_.get()); }
+  GLuint name() const { return program_.get(); }
   /// Location of a uniform (-1 if absent; cached).
   GLint uniform(const char* name);
 
  private:
-  GLuint program_ = 0;
+  GlProgramName program_;
   std::unordered_map<std::string, GLint> locations_;
 };
 

@@ -35,8 +35,8 @@ void validate(const MeshData& mesh) {
 }  // namespace
 
 void GpuMesh::draw() const {
-  glBindVertexArray(vao);
-  if (index_buffer != 0) {
+  glBindVertexArray(vao.get());
+  if (index_buffer) {
     glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
   } else {
     glDrawArrays(GL_TRIANGLES, 0, count);
@@ -75,10 +75,10 @@ GpuMesh upload_mesh(const MeshData& mesh) {
   gpu.centre = box.center();
   for (const auto& p : mesh.positions) gpu.radius = std::max(gpu.radius, (p - gpu.centre).norm());
 
-  glGenVertexArrays(1, &gpu.vao);
-  glBindVertexArray(gpu.vao);
-  glGenBuffers(1, &gpu.vertex_buffer);
-  glBindBuffer(GL_ARRAY_BUFFER, gpu.vertex_buffer);
+  gpu.vao = GlVertexArray::create();
+  glBindVertexArray(gpu.vao.get());
+  gpu.vertex_buffer = GlBuffer::create();
+  glBindBuffer(GL_ARRAY_BUFFER, gpu.vertex_buffer.get());
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(float)),
                vertices.data(), GL_STATIC_DRAW);
   glEnableVertexAttribArray(0);
@@ -87,8 +87,8 @@ GpuMesh upload_mesh(const MeshData& mesh) {
   glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float),
                         reinterpret_cast<const void*>(3 * sizeof(float)));
   if (!mesh.normals.empty()) {
-    glGenBuffers(1, &gpu.index_buffer);
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gpu.index_buffer);
+    gpu.index_buffer = GlBuffer::create();
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gpu.index_buffer.get());
     glBufferData(GL_ELEMENT_ARRAY_BUFFER,
                  static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
                  mesh.indices.data(), GL_STATIC_DRAW);
@@ -98,13 +98,6 @@ GpuMesh upload_mesh(const MeshData& mesh) {
   }
   glBindVertexArray(0);
   return gpu;
-}
-
-void destroy_mesh(GpuMesh& mesh) {
-  if (mesh.vao != 0) glDeleteVertexArrays(1, &mesh.vao);
-  if (mesh.vertex_buffer != 0) glDeleteBuffers(1, &mesh.vertex_buffer);
-  if (mesh.index_buffer != 0) glDeleteBuffers(1, &mesh.index_buffer);
-  mesh = GpuMesh{};
 }
 
 }  // namespace tumble::render::detail

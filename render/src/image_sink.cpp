@@ -8,6 +8,7 @@
 
 #include "ffmpeg_sink.hpp"
 #include "png_sequence_sink.hpp"
+#include "tumble/errors.hpp"
 
 namespace tumble::render {
 
@@ -34,9 +35,9 @@ SinkKind sink_kind(const std::filesystem::path& target) {
   if (extension == ".mp4") return SinkKind::kMp4;
   if (extension == ".webm") return SinkKind::kWebm;
   if (extension == ".gif") return SinkKind::kGif;
-  throw std::invalid_argument("unknown output '" + text +
-                              "': expected a directory ending in '/' (PNG frames) or a .mp4, "
-                              ".webm or .gif file");
+  throw InputError("unknown output '" + text +
+                   "': expected a directory ending in '/' (PNG frames) or a .mp4, .webm or .gif "
+                   "file");
 }
 
 std::unique_ptr<ImageSink> open_image_sink(const std::filesystem::path& target,

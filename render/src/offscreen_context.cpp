@@ -3,61 +3,77 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include "gl.hpp"
+#include "gl_handle.hpp"
 
 namespace tumble::render {
 
-struct OffscreenContext::Impl {
-  OSMesaContext context = nullptr;
-  std::uint8_t dummy_buffer[4 * 4 * 4] = {};  // the default framebuffer is never drawn to
-  GLuint draw_fbo = 0;     // what the passes render into (multisampled when samples > 1)
-  GLuint resolve_fbo = 0;  // single-sampled copy read back when drawing is multisampled
-  GLuint renderbuffers[3] = {};
-  std::vector<std::uint8_t> bottom_up;  // glReadPixels rows, flipped into the Image
-};
-
 namespace {
 
-/// Creates colour + depth renderbuffers attached to a new FBO; returns whether it is complete.
-bool make_framebuffer(int width, int height, int samples, GLuint& fbo, GLuint* colour,
-                      GLuint* depth) {
-  glGenFramebuffers(1, &fbo);
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-  glGenRenderbuffers(1, colour);
-  glBindRenderbuffer(GL_RENDERBUFFER, *colour);
+/// Owns an OSMesa context: destroyed after every GL object of the Impl (declared first).
+struct OsmesaContextDeleter {
+  void operator()(OSMesaContext context) const { OSMesaDestroyContext(context); }
+};
+using OsmesaContextPtr = std::unique_ptr<osmesa_context, OsmesaContextDeleter>;
+
+/// A framebuffer object with a colour and (optionally) a depth renderbuffer.
+struct Framebuffer {
+  detail::GlFramebuffer fbo;
+  detail::GlRenderbuffer colour;
+  detail::GlRenderbuffer depth;
+};
+
+/// Creates colour + depth renderbuffers attached to a new FBO; nothing (every object deleted
+/// again) when it is incomplete.
+std::optional<Framebuffer> make_framebuffer(int width, int height, int samples, bool with_depth) {
+  Framebuffer made;
+  made.fbo = detail::GlFramebuffer::create();
+  glBindFramebuffer(GL_FRAMEBUFFER, made.fbo.get());
+  made.colour = detail::GlRenderbuffer::create();
+  glBindRenderbuffer(GL_RENDERBUFFER, made.colour.get());
   glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples > 1 ? samples : 0, GL_RGBA8, width,
                                    height);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, *colour);
-  if (depth != nullptr) {
-    glGenRenderbuffers(1, depth);
-    glBindRenderbuffer(GL_RENDERBUFFER, *depth);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                            made.colour.get());
+  if (with_depth) {
+    made.depth = detail::GlRenderbuffer::create();
+    glBindRenderbuffer(GL_RENDERBUFFER, made.depth.get());
     glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples > 1 ? samples : 0,
                                      GL_DEPTH_COMPONENT24, width, height);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, *depth);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+                              made.depth.get());
   }
   const bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE &&
                         glGetError() == GL_NO_ERROR;
   if (!complete) {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glDeleteFramebuffers(1, &fbo);
-    glDeleteRenderbuffers(1, colour);
-    if (depth != nullptr) glDeleteRenderbuffers(1, depth);
-    fbo = 0;
+    return std::nullopt;
   }
-  return complete;
+  return made;
 }
 
 }  // namespace
 
+struct OffscreenContext::Impl {
+  // Members go in reverse order: the GL objects first, the context that owns them last.
+  OsmesaContextPtr context;
+  std::uint8_t dummy_buffer[4 * 4 * 4] = {};  // the default framebuffer is never drawn to
+  Framebuffer draw;     // what the passes render into (multisampled when samples > 1)
+  Framebuffer resolve;  // single-sampled copy read back when drawing is multisampled
+  std::vector<std::uint8_t> bottom_up;  // glReadPixels rows, flipped into the Image
+};
+
 OffscreenContext::OffscreenContext(int width, int height, int samples)
     : impl_(std::make_unique<Impl>()), width_(width), height_(height) {
   if (width <= 0 || height <= 0 || width > 16384 || height > 16384) {
-    throw std::runtime_error("offscreen context: invalid image size " + std::to_string(width) +
-                             "x" + std::to_string(height));
+    throw std::invalid_argument("offscreen context: invalid image size " +
+                                std::to_string(width) + "x" + std::to_string(height));
   }
   // llvmpipe reads its thread count at context creation; 2 is fastest on this class of machine.
   ::setenv("LP_NUM_THREADS", "2", /*overwrite=*/0);
@@ -74,14 +90,15 @@ OffscreenContext::OffscreenContext(int width, int height, int samples)
                             OSMESA_CONTEXT_MINOR_VERSION,
                             3,
                             0};
-  impl_->context = OSMesaCreateContextAttribs(attributes, nullptr);
+  // Every failure below leaves cleanup to impl_: its framebuffers go while the context is still
+  // current, then the context.
+  impl_->context.reset(OSMesaCreateContextAttribs(attributes, nullptr));
   if (impl_->context == nullptr) {
     throw std::runtime_error(
         "offscreen context: OSMesaCreateContextAttribs failed to create an OpenGL 3.3 core "
         "context (is libOSMesa with llvmpipe installed?)");
   }
-  if (!OSMesaMakeCurrent(impl_->context, impl_->dummy_buffer, GL_UNSIGNED_BYTE, 4, 4)) {
-    OSMesaDestroyContext(impl_->context);
+  if (!OSMesaMakeCurrent(impl_->context.get(), impl_->dummy_buffer, GL_UNSIGNED_BYTE, 4, 4)) {
     throw std::runtime_error("offscreen context: OSMesaMakeCurrent failed");
   }
 
@@ -89,55 +106,49 @@ OffscreenContext::OffscreenContext(int width, int height, int samples)
   GLint max_samples = 1;
   glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
   int wanted = std::clamp(samples, 1, std::max(1, static_cast<int>(max_samples)));
-  while (wanted > 1 && !make_framebuffer(width, height, wanted, impl_->draw_fbo,
-                                         &impl_->renderbuffers[0], &impl_->renderbuffers[1])) {
+  std::optional<Framebuffer> draw;
+  while (wanted > 1 && !(draw = make_framebuffer(width, height, wanted, /*with_depth=*/true))) {
     wanted /= 2;
   }
   if (wanted > 1) {
-    if (!make_framebuffer(width, height, 1, impl_->resolve_fbo, &impl_->renderbuffers[2],
-                          nullptr)) {
-      OSMesaDestroyContext(impl_->context);
-      throw std::runtime_error("offscreen context: resolve framebuffer is incomplete");
-    }
-  } else if (!make_framebuffer(width, height, 1, impl_->draw_fbo, &impl_->renderbuffers[0],
-                               &impl_->renderbuffers[1])) {
-    OSMesaDestroyContext(impl_->context);
+    std::optional<Framebuffer> resolve = make_framebuffer(width, height, 1, /*with_depth=*/false);
+    if (!resolve) throw std::runtime_error("offscreen context: resolve framebuffer is incomplete");
+    impl_->resolve = std::move(*resolve);
+  } else if (!(draw = make_framebuffer(width, height, 1, /*with_depth=*/true))) {
     throw std::runtime_error("offscreen context: framebuffer " + std::to_string(width) + "x" +
                              std::to_string(height) + " is incomplete");
   }
+  impl_->draw = std::move(*draw);
   samples_ = wanted;
-  glBindFramebuffer(GL_FRAMEBUFFER, impl_->draw_fbo);
+  glBindFramebuffer(GL_FRAMEBUFFER, impl_->draw.fbo.get());
   glViewport(0, 0, width, height);
 }
 
 OffscreenContext::~OffscreenContext() {
   if (impl_->context == nullptr) return;
+  // impl_'s GL objects are deleted after this body, in this context.
   make_current();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  if (impl_->resolve_fbo != 0) glDeleteFramebuffers(1, &impl_->resolve_fbo);
-  glDeleteFramebuffers(1, &impl_->draw_fbo);
-  glDeleteRenderbuffers(3, impl_->renderbuffers);
-  OSMesaDestroyContext(impl_->context);
 }
 
 void OffscreenContext::make_current() {
-  if (OSMesaGetCurrentContext() != impl_->context) {
-    OSMesaMakeCurrent(impl_->context, impl_->dummy_buffer, GL_UNSIGNED_BYTE, 4, 4);
+  if (OSMesaGetCurrentContext() != impl_->context.get()) {
+    OSMesaMakeCurrent(impl_->context.get(), impl_->dummy_buffer, GL_UNSIGNED_BYTE, 4, 4);
   }
-  glBindFramebuffer(GL_FRAMEBUFFER, impl_->draw_fbo);
+  glBindFramebuffer(GL_FRAMEBUFFER, impl_->draw.fbo.get());
   glViewport(0, 0, width_, height_);
 }
 
 void OffscreenContext::read_pixels(Image& out) {
   make_current();
   // Resolve the multisampled buffer into the single-sampled one.
-  GLuint read_fbo = impl_->draw_fbo;
-  if (impl_->resolve_fbo != 0) {
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, impl_->draw_fbo);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, impl_->resolve_fbo);
+  GLuint read_fbo = impl_->draw.fbo.get();
+  if (impl_->resolve.fbo) {
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, impl_->draw.fbo.get());
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, impl_->resolve.fbo.get());
     glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT,
                       GL_NEAREST);
-    read_fbo = impl_->resolve_fbo;
+    read_fbo = impl_->resolve.fbo.get();
   }
   // Read bottom-up rows and flip them into top-down order.
   const std::size_t row = 4 * static_cast<std::size_t>(width_);
@@ -153,7 +164,7 @@ void OffscreenContext::read_pixels(Image& out) {
     std::memcpy(out.rgba.data() + row * static_cast<std::size_t>(y),
                 impl_->bottom_up.data() + row * static_cast<std::size_t>(height_ - 1 - y), row);
   }
-  glBindFramebuffer(GL_FRAMEBUFFER, impl_->draw_fbo);
+  glBindFramebuffer(GL_FRAMEBUFFER, impl_->draw.fbo.get());
 }
 
 }  // namespace tumble::render

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "tumble/errors.hpp"
+
 namespace tumble::render::detail {
 
 std::filesystem::path output_directory(const std::filesystem::path& target) {
@@ -21,8 +23,8 @@ void require_output_directory(const std::filesystem::path& target) {
   const std::filesystem::path directory = output_directory(target);
   std::error_code error;
   if (!std::filesystem::is_directory(directory, error)) {
-    throw std::runtime_error("cannot write '" + target.string() + "': directory '" +
-                             directory.string() + "' does not exist");
+    throw InputError("cannot write '" + target.string() + "': directory '" + directory.string() +
+                     "' does not exist");
   }
 }
 

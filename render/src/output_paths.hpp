@@ -12,7 +12,7 @@ std::filesystem::path output_directory(const std::filesystem::path& target);
 /// A hidden sibling of `target`: ".<name>.tmp-<pid>" in the same directory.
 std::filesystem::path temporary_sibling(const std::filesystem::path& target);
 
-/// Checks that the output's directory exists and is a directory; throws std::runtime_error
+/// Checks that the output's directory exists and is a directory; throws tumble::InputError
 /// naming it otherwise.
 void require_output_directory(const std::filesystem::path& target);
 

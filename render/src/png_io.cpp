@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "tumble/errors.hpp"
+
 namespace tumble::render {
 
 namespace {
@@ -37,11 +39,11 @@ void on_png_warning(png_structp, png_const_charp) {}
 void write_png(const std::filesystem::path& file, const Image& image, int zlib_level) {
   if (image.width <= 0 || image.height <= 0 ||
       image.rgba.size() != 4 * static_cast<std::size_t>(image.width) * image.height) {
-    throw std::runtime_error("cannot write PNG '" + file.string() + "': malformed image");
+    throw std::invalid_argument("cannot write PNG '" + file.string() + "': malformed image");
   }
   File out(std::fopen(file.c_str(), "wb"));
   if (!out) {
-    throw std::runtime_error("cannot write PNG '" + file.string() + "': " + std::strerror(errno));
+    throw InputError("cannot write PNG '" + file.string() + "': " + std::strerror(errno));
   }
   ErrorState state;
   png_structp png =
@@ -57,7 +59,7 @@ void write_png(const std::filesystem::path& file, const Image& image, int zlib_l
   }
   if (setjmp(png_jmpbuf(png))) {
     png_destroy_write_struct(&png, &info);
-    throw std::runtime_error("cannot write PNG '" + file.string() + "': " + state.message);
+    throw InputError("cannot write PNG '" + file.string() + "': " + state.message);
   }
   png_init_io(png, out.get());
   png_set_compression_level(png, zlib_level);
@@ -70,14 +72,14 @@ void write_png(const std::filesystem::path& file, const Image& image, int zlib_l
   png_write_end(png, nullptr);
   png_destroy_write_struct(&png, &info);
   if (std::fflush(out.get()) != 0 || std::ferror(out.get())) {
-    throw std::runtime_error("cannot write PNG '" + file.string() + "': " + std::strerror(errno));
+    throw InputError("cannot write PNG '" + file.string() + "': " + std::strerror(errno));
   }
 }
 
 Image read_png(const std::filesystem::path& file) {
   File in(std::fopen(file.c_str(), "rb"));
   if (!in) {
-    throw std::runtime_error("cannot read PNG '" + file.string() + "': " + std::strerror(errno));
+    throw InputError("cannot read PNG '" + file.string() + "': " + std::strerror(errno));
   }
   ErrorState state;
   png_structp png =
@@ -91,7 +93,7 @@ Image read_png(const std::filesystem::path& file) {
   std::vector<png_bytep> rows;
   if (setjmp(png_jmpbuf(png))) {
     png_destroy_read_struct(&png, &info, nullptr);
-    throw std::runtime_error("cannot read PNG '" + file.string() + "': " + state.message);
+    throw InputError("cannot read PNG '" + file.string() + "': " + state.message);
   }
   png_init_io(png, in.get());
   png_read_info(png, info);

@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -13,6 +14,7 @@
 #include "frame_queue.hpp"
 #include "output_paths.hpp"
 #include "render/png_io.hpp"
+#include "tumble/errors.hpp"
 
 namespace tumble::render::detail {
 
@@ -24,13 +26,22 @@ std::string frame_name(std::size_t index) {
   return name;
 }
 
-/// Whether every entry of an existing directory is a frame of an earlier sequence.
+/// Whether every entry of an existing directory is a frame of an earlier sequence. Throws
+/// tumble::InputError when the directory cannot be listed.
 bool holds_only_frames(const std::filesystem::path& directory) {
-  for (const auto& entry : std::filesystem::directory_iterator(directory)) {
-    const std::string name = entry.path().filename().string();
-    if (!entry.is_regular_file() || !name.starts_with("frame_") || !name.ends_with(".png")) {
+  std::error_code error;
+  std::filesystem::directory_iterator entry(directory, error);
+  for (; !error && entry != std::filesystem::directory_iterator(); entry.increment(error)) {
+    const std::string name = entry->path().filename().string();
+    std::error_code type_error;
+    if (!entry->is_regular_file(type_error) || !name.starts_with("frame_") ||
+        !name.ends_with(".png")) {
       return false;
     }
+  }
+  if (error) {
+    throw InputError("cannot write PNG frames to '" + directory.string() +
+                     "': cannot list it: " + error.message());
   }
   return true;
 }
@@ -47,19 +58,19 @@ class PngSequenceSink final : public ImageSink {
     std::error_code error;
     if (std::filesystem::exists(target_, error)) {
       if (!std::filesystem::is_directory(target_, error)) {
-        throw std::runtime_error("cannot write PNG frames to '" + target_.string() +
-                                 "': it exists and is not a directory");
+        throw InputError("cannot write PNG frames to '" + target_.string() +
+                         "': it exists and is not a directory");
       }
       if (!holds_only_frames(target_)) {
-        throw std::runtime_error("refusing to replace '" + target_.string() +
-                                 "': it holds files other than frame_*.png");
+        throw InputError("refusing to replace '" + target_.string() +
+                         "': it holds files other than frame_*.png");
       }
     }
     std::filesystem::remove_all(temporary_, error);
     if (!std::filesystem::create_directory(temporary_, error)) {
-      throw std::runtime_error("cannot write PNG frames to '" + target_.string() +
-                               "': cannot create a directory in '" +
-                               output_directory(target_).string() + "': " + error.message());
+      throw InputError("cannot write PNG frames to '" + target_.string() +
+                       "': cannot create a directory in '" + output_directory(target_).string() +
+                       "': " + error.message());
     }
     // Encoder threads.
     const int threads = options.png_threads < 1 ? 1 : options.png_threads;
@@ -79,7 +90,7 @@ class PngSequenceSink final : public ImageSink {
     }
     rethrow_failure();
     if (finished_ || !queue_.push(frame, options_.first_index + frames_)) {
-      throw std::runtime_error("PNG sink '" + target_.string() + "' is closed");
+      throw std::logic_error("PNG sink '" + target_.string() + "' is closed");
     }
     ++frames_;
   }
@@ -97,8 +108,11 @@ class PngSequenceSink final : public ImageSink {
       if (replacing) std::filesystem::remove_all(old);
     } catch (const std::filesystem::filesystem_error& e) {
       abort();
-      throw std::runtime_error("cannot move PNG frames into '" + target_.string() +
-                               "': " + e.code().message());
+      const std::lock_guard lock(failure_mutex_);
+      failure_ = std::make_exception_ptr(
+          InputError("cannot move PNG frames into '" + target_.string() + "': " +
+                     e.code().message()));
+      std::rethrow_exception(failure_);
     } catch (...) {
       abort();
       throw;
@@ -118,9 +132,9 @@ class PngSequenceSink final : public ImageSink {
       image.rgba.swap(item.rgba);
       try {
         if (!failed()) write_png(temporary_ / frame_name(item.index), image, 1);
-      } catch (const std::exception& e) {
+      } catch (...) {  // kept as thrown: tumble::InputError for a file that cannot be written
         std::lock_guard lock(failure_mutex_);
-        if (failure_.empty()) failure_ = e.what();
+        if (!failure_) failure_ = std::current_exception();
       }
       queue_.recycle(std::move(image.rgba));
       image.rgba = {};
@@ -129,12 +143,13 @@ class PngSequenceSink final : public ImageSink {
 
   bool failed() {
     std::lock_guard lock(failure_mutex_);
-    return !failure_.empty();
+    return failure_ != nullptr;
   }
 
+  /// The first failure of an encoder (or of finish), again for every later call.
   void rethrow_failure() {
     std::lock_guard lock(failure_mutex_);
-    if (!failure_.empty()) throw std::runtime_error(failure_);
+    if (failure_) std::rethrow_exception(failure_);
   }
 
   void join_workers() {
@@ -159,7 +174,7 @@ class PngSequenceSink final : public ImageSink {
   FrameQueue queue_;
   std::vector<std::thread> workers_;
   std::mutex failure_mutex_;
-  std::string failure_;
+  std::exception_ptr failure_;
   std::size_t frames_ = 0;
   bool finished_ = false;
 };

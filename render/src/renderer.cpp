@@ -31,7 +31,7 @@ Renderer::~Renderer() {
   impl_->context.make_current();
   impl_->overlay.reset();
   impl_->scene.reset();
-  for (detail::GpuMesh& mesh : impl_->meshes) detail::destroy_mesh(mesh);
+  impl_->meshes.clear();
 }
 
 MeshId Renderer::upload(const MeshData& mesh) {
@@ -45,8 +45,8 @@ std::size_t Renderer::mesh_count() const { return impl_->meshes.size(); }
 void Renderer::release_meshes(std::size_t keep) {
   if (keep >= impl_->meshes.size()) return;
   impl_->context.make_current();
-  for (std::size_t i = keep; i < impl_->meshes.size(); ++i) detail::destroy_mesh(impl_->meshes[i]);
-  impl_->meshes.resize(keep);
+  impl_->meshes.erase(impl_->meshes.begin() + static_cast<std::ptrdiff_t>(keep),
+                      impl_->meshes.end());
 }
 
 Image Renderer::render(const DrawList& frame) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "arrow_geometry.hpp"
 #include "render/camera_math.hpp"
@@ -61,38 +62,26 @@ ScenePasses::ScenePasses()
       cylinder_(upload_mesh(unit_cylinder(24))),
       cone_(upload_mesh(unit_cone(24))) {
   // The background triangle needs a (any) vertex array bound in a core profile.
-  glGenVertexArrays(1, &empty_vao_);
+  empty_vao_ = GlVertexArray::create();
 
   // Ground: a unit square in plane coordinates, scaled and placed per frame.
   const float corners[] = {-1, -1, 1, -1, -1, 1, 1, 1};
-  glGenVertexArrays(1, &ground_vao_);
-  glBindVertexArray(ground_vao_);
-  glGenBuffers(1, &ground_buffer_);
-  glBindBuffer(GL_ARRAY_BUFFER, ground_buffer_);
+  ground_vao_ = GlVertexArray::create();
+  glBindVertexArray(ground_vao_.get());
+  ground_buffer_ = GlBuffer::create();
+  glBindBuffer(GL_ARRAY_BUFFER, ground_buffer_.get());
   glBufferData(GL_ARRAY_BUFFER, sizeof corners, corners, GL_STATIC_DRAW);
   glEnableVertexAttribArray(0);
   glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
 
   // Streamed positions of polylines and points, refilled each frame.
-  glGenVertexArrays(1, &stream_vao_);
-  glBindVertexArray(stream_vao_);
-  glGenBuffers(1, &stream_buffer_);
-  glBindBuffer(GL_ARRAY_BUFFER, stream_buffer_);
+  stream_vao_ = GlVertexArray::create();
+  glBindVertexArray(stream_vao_.get());
+  stream_buffer_ = GlBuffer::create();
+  glBindBuffer(GL_ARRAY_BUFFER, stream_buffer_.get());
   glEnableVertexAttribArray(0);
   glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
   glBindVertexArray(0);
-}
-
-ScenePasses::~ScenePasses() {
-  destroy_mesh(cylinder_);
-  destroy_mesh(cone_);
-  glDeleteVertexArrays(1, &empty_vao_);
-  glDeleteVertexArrays(1, &ground_vao_);
-  glDeleteBuffers(1, &ground_buffer_);
-  glDeleteVertexArrays(1, &stream_vao_);
-  glDeleteBuffers(1, &stream_buffer_);
-  if (shadow_fbo_ != 0) glDeleteFramebuffers(1, &shadow_fbo_);
-  if (shadow_texture_ != 0) glDeleteTextures(1, &shadow_texture_);
 }
 
 void ScenePasses::draw(const DrawList& frame, const std::vector<GpuMesh>& meshes,
@@ -139,7 +128,7 @@ void ScenePasses::collect_solids(const DrawList& frame, const std::vector<GpuMes
                                  const Eigen::Matrix4f& view) {
   solids_.clear();
   for (const MeshInstance& instance : frame.meshes) {
-    if (instance.mesh.value >= meshes.size() || meshes[instance.mesh.value].vao == 0) {
+    if (instance.mesh.value >= meshes.size() || !meshes[instance.mesh.value].vao) {
       throw std::invalid_argument("renderer: unknown mesh id " +
                                   std::to_string(instance.mesh.value));
     }
@@ -170,10 +159,10 @@ void ScenePasses::collect_solids(const DrawList& frame, const std::vector<GpuMes
 }
 
 void ScenePasses::draw_shadow_map(const DrawList& frame) {
-  if (shadow_fbo_ == 0) {
+  if (!shadow_fbo_) {
     // Depth texture with hardware comparison (sampler2DShadow, bilinear PCF per tap).
-    glGenTextures(1, &shadow_texture_);
-    glBindTexture(GL_TEXTURE_2D, shadow_texture_);
+    GlTexture texture = GlTexture::create();
+    glBindTexture(GL_TEXTURE_2D, texture.get());
     glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, kShadowMapSize, kShadowMapSize, 0,
                  GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, nullptr);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
@@ -182,17 +171,19 @@ void ScenePasses::draw_shadow_map(const DrawList& frame) {
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-    glGenFramebuffers(1, &shadow_fbo_);
-    glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbo_);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadow_texture_, 0);
+    GlFramebuffer framebuffer = GlFramebuffer::create();
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.get());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, texture.get(), 0);
     glDrawBuffer(GL_NONE);
     glReadBuffer(GL_NONE);
+    shadow_texture_ = std::move(texture);
+    shadow_fbo_ = std::move(framebuffer);
   }
   const float radius = std::max(scene_radius_, 1e-3f);
   light_view_projection_ =
       light_matrix(frame.style.key_light_from.normalized(), scene_centre_, radius);
 
-  glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbo_);
+  glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbo_.get());
   glViewport(0, 0, kShadowMapSize, kShadowMapSize);
   glEnable(GL_DEPTH_TEST);
   glDepthMask(GL_TRUE);
@@ -214,7 +205,7 @@ void ScenePasses::draw_background(const SceneStyle& style) {
               style.background_top.b, 1.0f);
   glUniform4f(background_program_.uniform("bottom"), style.background_bottom.r,
               style.background_bottom.g, style.background_bottom.b, 1.0f);
-  glBindVertexArray(empty_vao_);
+  glBindVertexArray(empty_vao_.get());
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glDepthMask(GL_TRUE);
 }
@@ -239,7 +230,7 @@ void ScenePasses::draw_ground(const DrawList& frame, int height) {
       scene_centre_ - key * (normal.dot(scene_centre_) - style.ground_height) / cos_light;
   const float patch_half_size = 1.1f * scene_radius_ / std::max(cos_light, 0.1f);
 
-  glBindVertexArray(ground_vao_);
+  glBindVertexArray(ground_vao_.get());
   for (int part = 0; part < 2; ++part) {
     const bool shadowed = part == 0 ? patch : (shadow_valid_ && !patch);
     if (part == 0 && !patch) continue;
@@ -258,7 +249,7 @@ void ScenePasses::draw_ground(const DrawList& frame, int height) {
     if (shadowed) {
       set_matrix(program, "light_view_projection", light_view_projection_);
       glActiveTexture(GL_TEXTURE0);
-      glBindTexture(GL_TEXTURE_2D, shadow_texture_);
+      glBindTexture(GL_TEXTURE_2D, shadow_texture_.get());
       glUniform1i(program.uniform("shadow_map"), 0);
       glUniform1f(program.uniform("texel"), 1.0f / kShadowMapSize);
     }
@@ -322,8 +313,8 @@ void ScenePasses::draw_lines_and_points(const DrawList& frame, int width, int he
   for (const Points& points : frame.points) {
     for (const auto& p : points.positions) stream_.insert(stream_.end(), {p.x(), p.y(), p.z()});
   }
-  glBindVertexArray(stream_vao_);
-  glBindBuffer(GL_ARRAY_BUFFER, stream_buffer_);
+  glBindVertexArray(stream_vao_.get());
+  glBindBuffer(GL_ARRAY_BUFFER, stream_buffer_.get());
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(stream_.size() * sizeof(float)),
                stream_.data(), GL_STREAM_DRAW);
   glEnable(GL_BLEND);

@@ -13,9 +13,9 @@ namespace tumble::render::detail {
 
 class ScenePasses {
  public:
-  /// Compiles the programs and builds the arrow shapes; needs the context current.
+  /// Compiles the programs and builds the arrow shapes; needs the context current, also when
+  /// it is destroyed (its members own the GL objects).
   ScenePasses();
-  ~ScenePasses();
   ScenePasses(const ScenePasses&) = delete;
   ScenePasses& operator=(const ScenePasses&) = delete;
 
@@ -49,13 +49,13 @@ class ScenePasses {
   GlProgram point_program_;
   GpuMesh cylinder_;
   GpuMesh cone_;
-  GLuint empty_vao_ = 0;
-  GLuint ground_vao_ = 0;
-  GLuint ground_buffer_ = 0;
-  GLuint stream_vao_ = 0;
-  GLuint stream_buffer_ = 0;
-  GLuint shadow_fbo_ = 0;
-  GLuint shadow_texture_ = 0;
+  GlVertexArray empty_vao_;
+  GlVertexArray ground_vao_;
+  GlBuffer ground_buffer_;
+  GlVertexArray stream_vao_;
+  GlBuffer stream_buffer_;
+  GlTexture shadow_texture_;  // created with shadow_fbo_ by the first frame that casts shadows
+  GlFramebuffer shadow_fbo_;
 
   // Per-frame state.
   std::vector<Solid> solids_;

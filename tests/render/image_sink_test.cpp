@@ -54,7 +54,7 @@ TEST(ImageSink, KindFollowsTheName) {
   EXPECT_EQ(sink_kind("a/b/OUT.WEBM"), SinkKind::kWebm);
   EXPECT_EQ(sink_kind("x.gif"), SinkKind::kGif);
   EXPECT_THAT([] { sink_kind("out.avi"); },
-              ThrowsMessage<std::invalid_argument>(HasSubstr("unknown output 'out.avi'")));
+              ThrowsMessage<InputError>(HasSubstr("unknown output 'out.avi'")));
 }
 
 TEST(ImageSink, PngSequenceWritesEveryFrameExactly) {
@@ -144,14 +144,14 @@ TEST(ImageSink, UnfinishedVideoLeavesNothing) {
 
 TEST(ImageSink, UnknownExtensionFailsBeforeRendering) {
   EXPECT_THAT([] { open_image_sink("/tmp/out.avi", options()); },
-              ThrowsMessage<std::invalid_argument>(HasSubstr("unknown output '/tmp/out.avi'")));
+              ThrowsMessage<InputError>(HasSubstr("unknown output '/tmp/out.avi'")));
 }
 
 TEST(ImageSink, MissingOrUnwritableDirectoryIsNamed) {
   EXPECT_THAT([] { open_image_sink("/nonexistent/dir/out.mp4", options()); },
-              ThrowsMessage<std::runtime_error>(HasSubstr("'/nonexistent/dir' does not exist")));
+              ThrowsMessage<InputError>(HasSubstr("'/nonexistent/dir' does not exist")));
   EXPECT_THAT([] { open_image_sink("/nonexistent/dir/frames/", options()); },
-              ThrowsMessage<std::runtime_error>(HasSubstr("'/nonexistent/dir' does not exist")));
+              ThrowsMessage<InputError>(HasSubstr("'/nonexistent/dir' does not exist")));
   // An existing directory we may not write to (root may write anywhere but sysfs).
   std::filesystem::path locked = "/sys";
   if (::geteuid() != 0) {
@@ -160,9 +160,9 @@ TEST(ImageSink, MissingOrUnwritableDirectoryIsNamed) {
         locked, std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
   }
   EXPECT_THAT([&] { open_image_sink(locked / "out.mp4", options()); },
-              ThrowsMessage<std::runtime_error>(HasSubstr("directory '" + locked.string() + "'")));
+              ThrowsMessage<InputError>(HasSubstr("directory '" + locked.string() + "'")));
   EXPECT_THAT([&] { open_image_sink(locked / "frames/", options()); },
-              ThrowsMessage<std::runtime_error>(HasSubstr("'" + locked.string() + "'")));
+              ThrowsMessage<InputError>(HasSubstr("'" + locked.string() + "'")));
   if (locked != "/sys") {
     std::filesystem::permissions(locked, std::filesystem::perms::owner_all);
     std::filesystem::remove_all(locked);
@@ -179,9 +179,9 @@ TEST(ImageSink, FfmpegFailureIsOneLineAndLeavesNoFile) {
         for (const Image& image : images) sink->write(image);
         sink->finish();
       },
-      ThrowsMessage<std::runtime_error>(::testing::AllOf(HasSubstr("ffmpeg failed writing"),
-                                                         HasSubstr("width not divisible by 2"),
-                                                         ::testing::Not(HasSubstr("\n")))));
+      ThrowsMessage<InputError>(::testing::AllOf(HasSubstr("ffmpeg failed writing"),
+                                                 HasSubstr("width not divisible by 2"),
+                                                 ::testing::Not(HasSubstr("\n")))));
   sink.reset();
   EXPECT_TRUE(directory_entries(dir).empty());
   std::filesystem::remove_all(dir);
@@ -192,7 +192,7 @@ TEST(ImageSink, MissingFfmpegIsReportedAtOpen) {
   const std::string path = std::getenv("PATH") ? std::getenv("PATH") : "";
   ::setenv("PATH", "/nonexistent", 1);
   EXPECT_THAT([&] { open_image_sink(dir / "out.mp4", options()); },
-              ThrowsMessage<std::runtime_error>(HasSubstr("ffmpeg not found on PATH")));
+              ThrowsMessage<InputError>(HasSubstr("ffmpeg not found on PATH")));
   ::setenv("PATH", path.c_str(), 1);
   EXPECT_TRUE(directory_entries(dir).empty());
   std::filesystem::remove_all(dir);

@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include "support/run_command.hpp"
 
 namespace tumble::render {
@@ -23,11 +25,28 @@ TEST(PngIo, RoundTripsEveryByte) {
 TEST(PngIo, ErrorsNameTheFile) {
   EXPECT_THAT(
       [] { read_png("/nonexistent/x.png"); },
-      ::testing::ThrowsMessage<std::runtime_error>(::testing::HasSubstr("/nonexistent/x.png")));
+      ::testing::ThrowsMessage<InputError>(::testing::HasSubstr("/nonexistent/x.png")));
   Image image{1, 1, {1, 2, 3, 4}};
   EXPECT_THAT(
       [&] { write_png("/nonexistent/y.png", image); },
-      ::testing::ThrowsMessage<std::runtime_error>(::testing::HasSubstr("/nonexistent/y.png")));
+      ::testing::ThrowsMessage<InputError>(::testing::HasSubstr("/nonexistent/y.png")));
+}
+
+TEST(PngIo, NotAPngIsBadInputAndAMalformedImageIsTheCallers) {
+  const auto dir = tumble::testing::fresh_directory("png_io_errors");
+  {
+    std::ofstream(dir / "text.png") << "not a PNG at all\n";
+  }
+  EXPECT_THAT([&] { read_png(dir / "text.png"); },
+              ::testing::ThrowsMessage<InputError>(::testing::AllOf(
+                  ::testing::HasSubstr("cannot read PNG '" + (dir / "text.png").string() + "'"),
+                  ::testing::HasSubstr("Not a PNG file"))));
+  const Image short_pixels{2, 2, {1, 2, 3, 4}};
+  EXPECT_THAT([&] { write_png(dir / "short.png", short_pixels); },
+              ::testing::ThrowsMessage<std::invalid_argument>(
+                  ::testing::HasSubstr("'" + (dir / "short.png").string() + "': malformed image")));
+  EXPECT_FALSE(std::filesystem::exists(dir / "short.png"));
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

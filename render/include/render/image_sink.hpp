@@ -6,7 +6,17 @@
 //   "out.gif"   palette-optimised GIF through an ffmpeg pipe (palettegen + paletteuse)
 // Outputs are atomic: frames go to a temporary name in the target's directory, which finish()
 // renames into place. Destroying a sink without finish(), or any failure, removes the temporary
-// and leaves nothing under the final name.
+// and leaves nothing under the final name; no descriptor or ffmpeg process outlives a failure.
+//
+// Errors, by whose they are to fix:
+// - tumble::InputError, one line naming the path: what the user asked for cannot be written
+//   (unknown extension, a directory that does not exist or cannot be written, a folder of other
+//   files that would be replaced, ffmpeg missing from PATH or not executable, ffmpeg failing on
+//   the output, with its last stderr lines). The app reports these as bad input.
+// - std::invalid_argument / std::logic_error: the caller's mistake (invalid SinkOptions, a
+//   frame of the wrong size, writing to a finished sink).
+// - std::runtime_error (not an InputError): the system failed us (no file descriptors for a
+//   pipe, fork failing). The app reports these as internal errors.
 
 #include <cstddef>
 #include <filesystem>
@@ -14,6 +24,7 @@
 #include <string>
 
 #include "render/image.hpp"
+#include "tumble/errors.hpp"
 
 namespace tumble::render {
 
@@ -37,21 +48,25 @@ class ImageSink {
  public:
   virtual ~ImageSink() = default;
   /// Queues one frame (copied; returns once it is buffered). Throws std::invalid_argument for a
-  /// frame of the wrong size and std::runtime_error if the output already failed.
+  /// frame of the wrong size, tumble::InputError when the output failed (ffmpeg stopped, with
+  /// its last stderr lines; a PNG that could not be written), again on every later call, and
+  /// std::logic_error once the sink is finished or abandoned.
   virtual void write(const Image& frame) = 0;
   /// Flushes, checks the encoder and moves the output to its final name. Throws
-  /// std::runtime_error (one line, with ffmpeg's last stderr line) on failure.
+  /// tumble::InputError (one line naming the path, with ffmpeg's last stderr lines) on failure.
+  /// Does nothing once finished (or failed).
   virtual void finish() = 0;
   /// Frames accepted so far.
   virtual std::size_t frames() const = 0;
 };
 
-/// The kind of output a name asks for. Throws std::invalid_argument for anything else.
+/// The kind of output a name asks for. Throws tumble::InputError for anything else.
 SinkKind sink_kind(const std::filesystem::path& target);
 
 /// Opens a sink, checking before any frame is rendered that the kind is known, the directory
-/// is writable and (for videos) ffmpeg can be started. Throws std::invalid_argument (unknown
-/// kind, bad options) or std::runtime_error (filesystem, ffmpeg), naming the path.
+/// is writable and (for videos) ffmpeg can be started. Throws tumble::InputError naming the
+/// path for any of those, std::invalid_argument for invalid options (size, frame rate), and
+/// std::runtime_error when the system cannot give a pipe or a process for ffmpeg.
 std::unique_ptr<ImageSink> open_image_sink(const std::filesystem::path& target,
                                            const SinkOptions& options);
 

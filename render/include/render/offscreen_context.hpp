@@ -13,7 +13,9 @@ class OffscreenContext {
  public:
   /// Creates a core 3.3+ context and a width x height FBO with `samples` samples per pixel
   /// (1 = no MSAA; clamped to what the driver supports). Sets LP_NUM_THREADS=2 when unset.
-  /// Throws std::runtime_error with one line when the context or FBO can't be created.
+  /// Throws std::invalid_argument for a size outside 1..16384 (the caller validates sizes) and
+  /// std::runtime_error with one line when the context or FBO can't be created. The GL objects
+  /// it owns are deleted with it, also when construction fails midway.
   OffscreenContext(int width, int height, int samples);
   ~OffscreenContext();
   OffscreenContext(const OffscreenContext&) = delete;

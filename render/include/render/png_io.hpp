@@ -4,14 +4,18 @@
 #include <filesystem>
 
 #include "render/image.hpp"
+#include "tumble/errors.hpp"
 
 namespace tumble::render {
 
-/// Writes an RGBA8 PNG. Throws std::runtime_error naming the file on failure.
+/// Writes an RGBA8 PNG. Throws tumble::InputError (one line naming the file) when the file
+/// cannot be written, std::invalid_argument for an image whose pixels do not match its size,
+/// std::runtime_error when libpng runs out of memory.
 void write_png(const std::filesystem::path& file, const Image& image, int zlib_level = 1);
 
 /// Reads any PNG as RGBA8 (palette, grey and 16-bit inputs are converted). Throws
-/// std::runtime_error naming the file on failure.
+/// tumble::InputError naming the file when it cannot be read or is not a valid PNG,
+/// std::runtime_error when libpng runs out of memory.
 Image read_png(const std::filesystem::path& file);
 
 }  // namespace tumble::render

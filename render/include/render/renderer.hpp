@@ -51,7 +51,8 @@ struct ExtraPass {
 /// Off-screen renderer; not thread-safe, use one per thread.
 class Renderer {
  public:
-  /// Creates the GL context. Throws std::runtime_error (one line) when it can't.
+  /// Creates the GL context. Throws std::runtime_error (one line) when it can't (a GL or
+  /// OSMesa failure, never a tumble::InputError), std::invalid_argument for an invalid size.
   explicit Renderer(const RendererOptions& options = {});
   ~Renderer();
   Renderer(const Renderer&) = delete;
@@ -63,8 +64,9 @@ class Renderer {
 
   /// Meshes uploaded so far (the next upload's handle value).
   std::size_t mesh_count() const;
-  /// Releases every mesh uploaded after the first `keep` (their handles become invalid): a
-  /// caller that rebuilds its scene takes mesh_count() once and releases back to it.
+  /// Releases every mesh uploaded after the first `keep` (their GL objects are deleted and their
+  /// handles become invalid): a caller that rebuilds its scene takes mesh_count() once and
+  /// releases back to it.
   void release_meshes(std::size_t keep);
 
   /// Draws one frame and returns its pixels (rows top-down).
