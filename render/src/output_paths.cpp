@@ -1,7 +1,5 @@
 #include "output_paths.hpp"
 
-#include <unistd.h>
-
 #include <stdexcept>
 #include <system_error>
 
@@ -12,11 +10,6 @@ namespace tumble::render::detail {
 std::filesystem::path output_directory(const std::filesystem::path& target) {
   const std::filesystem::path parent = target.parent_path();
   return parent.empty() ? std::filesystem::path(".") : parent;
-}
-
-std::filesystem::path temporary_sibling(const std::filesystem::path& target) {
-  return output_directory(target) /
-         ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()));
 }
 
 void require_output_directory(const std::filesystem::path& target) {

@@ -4,13 +4,12 @@
 #include <filesystem>
 #include <string>
 
+#include "tumble/temporary_path.hpp"  // temporary_sibling: the one naming rule
+
 namespace tumble::render::detail {
 
 /// The directory an output goes into ("." for a bare file name).
 std::filesystem::path output_directory(const std::filesystem::path& target);
-
-/// A hidden sibling of `target`: ".<name>.tmp-<pid>" in the same directory.
-std::filesystem::path temporary_sibling(const std::filesystem::path& target);
 
 /// Checks that the output's directory exists and is a directory; throws tumble::InputError
 /// naming it otherwise.

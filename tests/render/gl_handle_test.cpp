@@ -12,11 +12,11 @@
 #include <utility>
 #include <vector>
 
-#include "../../render/src/gl_handle.hpp"
-#include "../../render/src/gl_program.hpp"
-#include "../../render/src/gpu_mesh.hpp"
-#include "../../render/src/overlay_pass.hpp"
-#include "../../render/src/scene_passes.hpp"
+#include "gl_handle.hpp"
+#include "gl_program.hpp"
+#include "gpu_mesh.hpp"
+#include "overlay_pass.hpp"
+#include "scene_passes.hpp"
 #include "render/offscreen_context.hpp"
 #include "render/renderer.hpp"
 #include "render_support.hpp"
