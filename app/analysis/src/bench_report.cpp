@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "app/analysis/gnuplot.hpp"
+#include "tumble/errors.hpp"
 
 namespace tumble::app {
 namespace {
@@ -46,7 +47,7 @@ std::string step_text(const BenchCase& c) {
 }
 
 void ensure_written(std::ofstream& out, const std::filesystem::path& file) {
-  if (!out.flush()) throw std::runtime_error("cannot write " + file.string());
+  if (!out.flush()) throw InputError("cannot write " + file.string());
 }
 
 }  // namespace

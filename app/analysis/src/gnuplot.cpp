@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "tumble/errors.hpp"
+
 namespace tumble::app {
 namespace {
 
@@ -94,7 +96,7 @@ void run_gnuplot(const std::string& script, const std::filesystem::path& script_
   {
     std::ofstream out(script_file);
     out << script;
-    if (!out.flush()) throw std::runtime_error("cannot write " + script_file.string());
+    if (!out.flush()) throw InputError("cannot write " + script_file.string());
   }
   const std::string command = "gnuplot " + shell_quoted(script_file.string()) + " >" +
                               shell_quoted(log.string()) + " 2>&1";
@@ -104,10 +106,11 @@ void run_gnuplot(const std::string& script, const std::filesystem::path& script_
     std::ifstream in(log);
     for (std::string line; first_line.empty() && std::getline(in, line);) first_line = line;
   }
-  std::filesystem::remove(script_file);
-  std::filesystem::remove(log);
+  std::error_code ignored;
+  std::filesystem::remove(script_file, ignored);
+  std::filesystem::remove(log, ignored);
   if (status != 0) {
-    throw std::runtime_error("gnuplot failed" + (first_line.empty()
+    throw InputError("gnuplot failed" + (first_line.empty()
                                                      ? " (status " + std::to_string(status) +
                                                            "; is gnuplot installed?)"
                                                      : ": " + first_line));

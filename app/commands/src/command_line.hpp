@@ -7,6 +7,7 @@
 /// itself with `tumble-draw`, the executable beside it that holds those three (README,
 /// "Start-up"), so to the user there is one command with one help text.
 
+#include <string>
 #include <string_view>
 
 #include <CLI/CLI.hpp>
@@ -40,9 +41,22 @@ inline bool is_drawing_command(std::string_view name) {
   return false;
 }
 
+/// A command-line error as one line, "tumble COMMAND: error: WHAT (see tumble COMMAND --help)",
+/// like every other error tumble reports.
+inline std::string one_line_failure(const CLI::App* cli, const CLI::Error& error) {
+  std::string command = "tumble";
+  for (const CLI::App* subcommand : cli->get_subcommands()) command += " " + subcommand->get_name();
+  std::string what = error.what();
+  for (char& c : what) {
+    if (c == '\n') c = ' ';
+  }
+  return command + ": error: " + what + " (see " + command + " --help)\n";
+}
+
 /// The top-level command line both executables start from: named "tumble", one subcommand
-/// required, --version.
+/// required, --version, errors in one line.
 inline void configure_top_level(CLI::App& cli) {
+  cli.failure_message(one_line_failure);
   cli.name("tumble");
   cli.description(
       "tumble: rigid bodies with mass properties from real meshes: inspect, simulate, render, "

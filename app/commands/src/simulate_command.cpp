@@ -79,7 +79,7 @@ std::optional<double> exact_orientation_error(const engine::BodyModel& body,
   try {
     const engine::ReferenceMotion exact({body}, {initial});  // exact: the body is torque-free
     return engine::orientation_angle(exact.at(time).front().orientation, state.orientation);
-  } catch (const std::exception&) {
+  } catch (const InputError&) {  // an inertia the exact solution cannot take
     return std::nullopt;
   }
 }

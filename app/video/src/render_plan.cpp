@@ -77,12 +77,7 @@ RenderSettings render_settings(const RenderOptions& options, const SceneDescript
 std::unique_ptr<render::ImageSink> open_render_output(const VideoOptions& options,
                                                       const RenderSettings& settings,
                                                       std::size_t first_frame) {
-  render::SinkKind kind{};
-  try {
-    kind = render::sink_kind(options.output);
-  } catch (const std::invalid_argument& error) {
-    throw InputError(error.what());
-  }
+  const render::SinkKind kind = render::sink_kind(options.output);  // InputError if unknown
   if ((kind == render::SinkKind::kMp4 || kind == render::SinkKind::kWebm) &&
       (settings.width % 2 != 0 || settings.height % 2 != 0)) {
     throw InputError("cannot write '" + options.output.string() +
