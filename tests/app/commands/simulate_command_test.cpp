@@ -16,7 +16,9 @@
 #include "app/support/csv_writer.hpp"
 #include "engine/integrators.hpp"
 #include "support/command_test.hpp"
+#include "support/csv_reader.hpp"
 #include "support/run_command.hpp"
+#include "support/scene_builder.hpp"
 
 namespace tumble::app {
 namespace {
@@ -35,18 +37,11 @@ struct Row {
   std::vector<double> values;
 };
 
-/// Parses a trajectory CSV (bodies named without commas); checks every row has 19 fields.
+/// Parses a trajectory CSV; checks every row has 19 fields.
 std::vector<Row> read_rows(const std::filesystem::path& file) {
-  std::istringstream in(read_text(file));
-  std::string line;
-  std::getline(in, line);  // header
   std::vector<Row> rows;
-  while (std::getline(in, line)) {
-    std::vector<std::string> fields;
-    std::stringstream cells(line);
-    std::string cell;
-    while (std::getline(cells, cell, ',')) fields.push_back(cell);
-    EXPECT_EQ(fields.size(), 19u) << line;
+  for (const std::vector<std::string>& fields : testing::read_csv(file).records) {
+    EXPECT_EQ(fields.size(), 19u);
     if (fields.size() != 19u) continue;
     Row row;
     row.t = std::strtod(fields[0].c_str(), nullptr);
@@ -61,17 +56,15 @@ std::vector<Row> read_rows(const std::filesystem::path& file) {
 
 /// A free asymmetric body spinning near its intermediate axis, torque-free.
 json free_body_scene(double duration = 0.5, double dt = 0.01) {
-  return {{"duration", duration},
-          {"dt", dt},
-          {"integrator", "rk4"},
-          {"bodies",
-           {{{"name", "brick"},
-             {"inertia", {{"principal", {1, 2, 3}}}},
-             {"mass", 2.0},
-             {"position", {1, 2, 3}},
-             {"velocity", {0.5, 0, 0}},
-             {"angular_velocity", {0.01, 3.0, 0.01}},
-             {"angular_velocity_frame", "body"}}}}};
+  return testing::SceneBuilder()
+      .duration(duration)
+      .dt(dt)
+      .integrator("rk4")
+      .body(testing::BodyBuilder("brick")
+                .position({1, 2, 3})
+                .velocity({0.5, 0, 0})
+                .angular_velocity({0.01, 3.0, 0.01}, "body"))
+      .json();
 }
 
 class SimulateCommand : public testing::CommandTest {
