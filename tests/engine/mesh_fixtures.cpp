@@ -229,19 +229,12 @@ void write_stl_ascii(const std::filesystem::path& file, const std::vector<Polyhe
   for (std::size_t s = 0; s < solids.size(); ++s) {
     const Polyhedron& mesh = solids[s];
     require_triangles(mesh, "ASCII STL");
-    const std::string name = "part" + std::to_string(s + 1);
-    text += "solid " + name + "\n";
-    for (const auto& face : mesh.faces) {
-      const Eigen::Vector3d n = face_normal(mesh, face);
-      text += "  facet normal " + num(n.x()) + " " + num(n.y()) + " " + num(n.z()) + "\n";
-      text += "    outer loop\n";
-      for (const std::uint32_t v : face) {
-        const Eigen::Vector3d& p = mesh.vertices[v];
-        text += "      vertex " + num(p.x()) + " " + num(p.y()) + " " + num(p.z()) + "\n";
-      }
-      text += "    endloop\n  endfacet\n";
-    }
-    text += "endsolid " + name + "\n";
+    text += tumble::testing::ascii_stl_solid(
+        "part" + std::to_string(s + 1), mesh.faces.size(), [&](std::size_t i) {
+          const auto& face = mesh.faces[i];
+          return tumble::testing::StlTriangle{face_normal(mesh, face), mesh.vertices[face[0]],
+                                              mesh.vertices[face[1]], mesh.vertices[face[2]]};
+        });
   }
   write_file(file, text);
 }

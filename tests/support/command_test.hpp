@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/run_command.hpp"
+#include "support/scene_builder.hpp"
 
 namespace tumble::testing {
 
@@ -18,13 +19,11 @@ namespace tumble::testing {
 /// A needle (moments 0.001 : 1 : 1) spun fast about its axis with a wobble: with dt = 0.01,
 /// explicit Euler blows up at step 241 (t = 2.41 s), while stable integrators get through.
 inline nlohmann::json fast_needle_scene() {
-  return {{"duration", 3.0},
-          {"dt", 0.01},
-          {"bodies",
-           {{{"name", "needle"},
-             {"inertia", {{"principal", {0.001, 1, 1}}}},
-             {"mass", 1.0},
-             {"angular_velocity", {10, 1, 0}}}}}};
+  return SceneBuilder()
+      .duration(3.0)
+      .dt(0.01)
+      .body(BodyBuilder("needle").principal({0.001, 1, 1}).mass(1.0).angular_velocity({10, 1, 0}))
+      .json();
 }
 
 /// Each test gets its own empty folder (named after its suite), removed afterwards.

@@ -1,7 +1,8 @@
 #pragma once
-// Binary STL bytes and files (test and benchmark fixtures).
+// Binary and ASCII STL bytes and files (test and benchmark fixtures).
 
 #include <array>
+#include <charconv>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -40,6 +41,43 @@ std::string binary_stl_bytes(std::size_t count, TriangleAt triangle, std::string
   return bytes;
 }
 
+/// One `solid NAME ... endsolid NAME` block of an ASCII STL of `count` triangles,
+/// `triangle(i)` giving each (normal, then corners), every number as printf("%.17g") writes it
+/// (reads back as the same double).
+template <typename TriangleAt>
+std::string ascii_stl_solid(const std::string& name, std::size_t count, TriangleAt triangle) {
+  const auto append = [](std::string& text, const Eigen::Vector3d& v) {
+    for (int axis = 0; axis < 3; ++axis) {
+      char buffer[32];
+      const auto end = std::to_chars(buffer, buffer + sizeof buffer, v[axis],
+                                     std::chars_format::general, 17)
+                           .ptr;
+      text.append(" ").append(buffer, end);
+    }
+    text += "\n";
+  };
+  std::string text = "solid " + name + "\n";
+  for (std::size_t i = 0; i < count; ++i) {
+    const StlTriangle t = triangle(i);
+    text += "  facet normal";
+    append(text, t[0]);
+    text += "    outer loop\n";
+    for (int corner = 1; corner <= 3; ++corner) {
+      text += "      vertex";
+      append(text, t[corner]);
+    }
+    text += "    endloop\n  endfacet\n";
+  }
+  return text + "endsolid " + name + "\n";
+}
+
+/// Writes `bytes` (binary or text) to `file` verbatim.
+inline void write_stl_file(const std::filesystem::path& file, const std::string& bytes) {
+  std::ofstream out(file, std::ios::binary | std::ios::trunc);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  if (!out) throw std::runtime_error("cannot write " + file.string());
+}
+
 /// Writes `mesh` as binary STL (zero normals).
 inline void write_binary_stl(const std::filesystem::path& file, const engine::TriangleMesh& mesh) {
   const std::string bytes = binary_stl_bytes(
@@ -50,9 +88,7 @@ inline void write_binary_stl(const std::filesystem::path& file, const engine::Tr
                            mesh.positions[t[2]]};
       },
       "binary STL written by tumble's test support");
-  std::ofstream out(file, std::ios::binary);
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  if (!out) throw std::runtime_error("cannot write " + file.string());
+  write_stl_file(file, bytes);
 }
 
 }  // namespace tumble::testing

@@ -16,7 +16,9 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/integrators.hpp"
+#include "support/csv_reader.hpp"
 #include "support/run_command.hpp"
+#include "support/scene_builder.hpp"
 
 namespace tumble::app {
 namespace {
@@ -28,50 +30,17 @@ using tumble::testing::read_text;
 using tumble::testing::run_command;
 using tumble::testing::tumble_executable;
 
-/// results.csv as rows of named fields (no quoted commas in these scenes).
-struct Csv {
-  std::vector<std::string> header;
-  std::vector<std::map<std::string, std::string>> rows;
-};
-
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> fields;
-  std::stringstream cells(line);
-  std::string cell;
-  while (std::getline(cells, cell, ',')) fields.push_back(cell);
-  if (!line.empty() && line.back() == ',') fields.emplace_back();
-  return fields;
-}
-
-Csv read_csv(const std::filesystem::path& file) {
-  std::istringstream in(read_text(file));
-  std::string line;
-  Csv csv;
-  std::getline(in, line);
-  csv.header = split(line);
-  while (std::getline(in, line)) {
-    const auto fields = split(line);
-    EXPECT_EQ(fields.size(), csv.header.size()) << line;
-    std::map<std::string, std::string> row;
-    for (std::size_t i = 0; i < fields.size() && i < csv.header.size(); ++i) {
-      row[csv.header[i]] = fields[i];
-    }
-    csv.rows.push_back(row);
-  }
-  return csv;
-}
+using Csv = testing::CsvTable;
+using testing::read_csv;
 
 /// An asymmetric torque-free body, I = (1, 2, 3), w_body = (0.4, 0.8, 0.6).
 json torque_free_scene() {
-  return {{"name", "brick"},
-          {"duration", 4.0},
-          {"dt", 0.01},
-          {"bodies",
-           {{{"name", "brick"},
-             {"inertia", {{"principal", {1, 2, 3}}}},
-             {"mass", 1.0},
-             {"angular_velocity", {0.4, 0.8, 0.6}},
-             {"angular_velocity_frame", "body"}}}}};
+  return testing::SceneBuilder()
+      .name("brick")
+      .duration(4.0)
+      .dt(0.01)
+      .body(testing::BodyBuilder("brick").mass(1.0).angular_velocity({0.4, 0.8, 0.6}, "body"))
+      .json();
 }
 
 /// The integrators under test with their nominal orders (dopri swept by tolerance apart).

@@ -21,6 +21,7 @@
 #include "support/command_test.hpp"
 #include "support/image_compare.hpp"
 #include "support/run_command.hpp"
+#include "support/scene_builder.hpp"
 #include "support/input_error.hpp"
 
 namespace tumble::app {
@@ -36,15 +37,12 @@ using tumble::testing::tumble_executable;
 /// A chunky box (moments 2, 3, 4) spun about its intermediate axis with a small wobble: the
 /// tumble amplifies integrator errors, so a first-order method ends far from a fourth-order one.
 json tumbling_scene() {
-  return {{"name", "compare tumble"},
-          {"duration", 3.0},
-          {"dt", 0.01},
-          {"bodies",
-           {{{"name", "brick"},
-             {"inertia", {{"principal", {2, 3, 4}}}},
-             {"mass", 2.0},
-             {"angular_velocity", {0.2, 5.0, 0.2}},
-             {"angular_velocity_frame", "body"}}}}};
+  return testing::SceneBuilder()
+      .name("compare tumble")
+      .duration(3.0)
+      .dt(0.01)
+      .body(testing::BodyBuilder("brick").principal({2, 3, 4}).angular_velocity({0.2, 5.0, 0.2}, "body"))
+      .json();
 }
 
 

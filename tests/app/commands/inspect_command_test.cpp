@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/run_command.hpp"
+#include "support/stl_writer.hpp"
 
 namespace tumble::app {
 namespace {
@@ -28,27 +29,19 @@ void write_box_stl(const std::filesystem::path& file, double sx, double sy, doub
   const double x[2] = {cx - sx / 2, cx + sx / 2}, y[2] = {cy - sy / 2, cy + sy / 2},
                z[2] = {cz - sz / 2, cz + sz / 2};
   const auto corner = [&](int i) {
-    return std::array<double, 3>{x[i & 1], y[(i >> 1) & 1], z[(i >> 2) & 1]};
+    return Eigen::Vector3d(x[i & 1], y[(i >> 1) & 1], z[(i >> 2) & 1]);
   };
-  // Outward-wound quads of the unit cube's corner numbering (bit 0 = x, 1 = y, 2 = z).
+  // Outward-wound quads of the unit cube's corner numbering (bit 0 = x, 1 = y, 2 = z), two
+  // triangles each.
   const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
                            {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  std::ofstream out(file);
-  out.precision(17);
-  out << "solid box\n";
-  int written = 0;
-  for (const auto& q : quads) {
-    for (const auto& tri : {std::array{q[0], q[1], q[2]}, std::array{q[0], q[2], q[3]}}) {
-      if (written++ >= 12 - skip_faces) continue;
-      out << "facet normal 0 0 0\n outer loop\n";
-      for (int v : tri) {
-        const auto p = corner(v);
-        out << "  vertex " << p[0] << " " << p[1] << " " << p[2] << "\n";
-      }
-      out << " endloop\nendfacet\n";
-    }
-  }
-  out << "endsolid box\n";
+  const auto triangle = [&](std::size_t i) {
+    const int* q = quads[i / 2];
+    const int second = i % 2 == 0 ? 1 : 2;
+    return testing::StlTriangle{Eigen::Vector3d::Zero(), corner(q[0]), corner(q[second]),
+                                corner(q[second + 1])};
+  };
+  testing::write_stl_file(file, testing::ascii_stl_solid("box", 12 - skip_faces, triangle));
 }
 
 class InspectCommand : public ::testing::Test {

@@ -21,6 +21,7 @@
 #include "support/image_compare.hpp"
 #include "support/input_error.hpp"
 #include "support/run_command.hpp"
+#include "support/scene_builder.hpp"
 
 namespace tumble::app {
 namespace {
@@ -37,16 +38,13 @@ using tumble::testing::tumble_executable;
 
 /// A box-shaped body (given by its moments, no mesh) tumbling about its intermediate axis.
 json tumbling_scene(double duration = 0.5, double dt = 0.01) {
-  return {{"name", "test tumble"},
-          {"duration", duration},
-          {"dt", dt},
-          {"integrator", "rk4"},
-          {"bodies",
-           {{{"name", "brick"},
-             {"inertia", {{"principal", {1, 2, 3}}}},
-             {"mass", 2.0},
-             {"angular_velocity", {0.3, 6.0, 0.3}},
-             {"angular_velocity_frame", "body"}}}}};
+  return testing::SceneBuilder()
+      .name("test tumble")
+      .duration(duration)
+      .dt(dt)
+      .integrator("rk4")
+      .body(testing::BodyBuilder("brick").angular_velocity({0.3, 6.0, 0.3}, "body"))
+      .json();
 }
 
 

@@ -16,7 +16,9 @@
 #include "app/support/csv_writer.hpp"
 #include "engine/integrators.hpp"
 #include "support/command_test.hpp"
+#include "support/csv_reader.hpp"
 #include "support/run_command.hpp"
+#include "support/scene_builder.hpp"
 
 namespace tumble::app {
 namespace {
@@ -35,18 +37,11 @@ struct Row {
   std::vector<double> values;
 };
 
-/// Parses a trajectory CSV (bodies named without commas); checks every row has 19 fields.
+/// Parses a trajectory CSV; checks every row has 19 fields.
 std::vector<Row> read_rows(const std::filesystem::path& file) {
-  std::istringstream in(read_text(file));
-  std::string line;
-  std::getline(in, line);  // header
   std::vector<Row> rows;
-  while (std::getline(in, line)) {
-    std::vector<std::string> fields;
-    std::stringstream cells(line);
-    std::string cell;
-    while (std::getline(cells, cell, ',')) fields.push_back(cell);
-    EXPECT_EQ(fields.size(), 19u) << line;
+  for (const std::vector<std::string>& fields : testing::read_csv(file).records) {
+    EXPECT_EQ(fields.size(), 19u);
     if (fields.size() != 19u) continue;
     Row row;
     row.t = std::strtod(fields[0].c_str(), nullptr);
@@ -61,17 +56,15 @@ std::vector<Row> read_rows(const std::filesystem::path& file) {
 
 /// A free asymmetric body spinning near its intermediate axis, torque-free.
 json free_body_scene(double duration = 0.5, double dt = 0.01) {
-  return {{"duration", duration},
-          {"dt", dt},
-          {"integrator", "rk4"},
-          {"bodies",
-           {{{"name", "brick"},
-             {"inertia", {{"principal", {1, 2, 3}}}},
-             {"mass", 2.0},
-             {"position", {1, 2, 3}},
-             {"velocity", {0.5, 0, 0}},
-             {"angular_velocity", {0.01, 3.0, 0.01}},
-             {"angular_velocity_frame", "body"}}}}};
+  return testing::SceneBuilder()
+      .duration(duration)
+      .dt(dt)
+      .integrator("rk4")
+      .body(testing::BodyBuilder("brick")
+                .position({1, 2, 3})
+                .velocity({0.5, 0, 0})
+                .angular_velocity({0.01, 3.0, 0.01}, "body"))
+      .json();
 }
 
 class SimulateCommand : public testing::CommandTest {
@@ -201,19 +194,19 @@ TEST_F(SimulateCommand, SameSceneGivesABitIdenticalCsv) {
 
 TEST_F(SimulateCommand, PivotedBodyKeepsItsCentreOfMassAtAFixedDistance) {
   // A heavy symmetric top: I = (1, 1, 0.5) about the centre of mass, pivot 0.3 below it.
-  json scene = {{"duration", 1.0},
-                {"dt", 0.001},
-                {"integrator", "rk4"},
-                {"gravity", {0, 0, -9.81}},
-                {"bodies",
-                 {{{"name", "top"},
-                   {"inertia", {{"principal", {1, 1, 0.5}}}},
-                   {"mass", 1.0},
-                   {"position", {0, 0, 0.3}},
-                   {"pivot", {0, 0, -0.3}},
-                   {"orientation", {0.99, 0.1, 0, 0}},
-                   {"angular_velocity", {0, 0, 20}},
-                   {"angular_velocity_frame", "body"}}}}};
+  const json scene = testing::SceneBuilder()
+                         .duration(1.0)
+                         .dt(0.001)
+                         .integrator("rk4")
+                         .set("gravity", {0, 0, -9.81})
+                         .body(testing::BodyBuilder("top")
+                                   .principal({1, 1, 0.5})
+                                   .mass(1.0)
+                                   .position({0, 0, 0.3})
+                                   .set("pivot", {0, 0, -0.3})
+                                   .orientation(0.99, 0.1, 0, 0)
+                                   .angular_velocity({0, 0, 20}, "body"))
+                         .json();
   const auto result = simulate(write_scene(scene) + " --json --csv " + path("top.csv"));
   ASSERT_EQ(result.status, 0) << result.err;
   const auto rows = read_rows(path("top.csv"));
@@ -329,14 +322,13 @@ TEST_F(SimulateCommand, CommandLineOverridesTheScene) {
 
 TEST_F(SimulateCommand, BlowUpExitsWithThreeAndKeepsAValidCsv) {
   // Explicit Euler on a needle (1 : 1000 : 1000) spinning fast about its axis, large dt.
-  json scene = {{"duration", 10.0},
-                {"dt", 0.01},
-                {"integrator", "explicit-euler"},
-                {"bodies",
-                 {{{"name", "needle"},
-                   {"inertia", {{"principal", {0.001, 1, 1}}}},
-                   {"mass", 1.0},
-                   {"angular_velocity", {10, 1, 0}}}}}};
+  const json scene =
+      testing::SceneBuilder()
+          .duration(10.0)
+          .dt(0.01)
+          .integrator("explicit-euler")
+          .body(testing::BodyBuilder("needle").principal({0.001, 1, 1}).mass(1.0).angular_velocity({10, 1, 0}))
+          .json();
   std::ofstream(path("out.csv")) << "an older file\n";
   const auto result = simulate(write_scene(scene) + " --every 7 --json --csv " + path("out.csv"));
   EXPECT_EQ(result.status, 3);
@@ -372,16 +364,14 @@ TEST_F(SimulateCommand, BlowUpExitsWithThreeAndKeepsAValidCsv) {
 
 TEST_F(SimulateCommand, StiffSpringBlowsUpUnderSymplecticEuler) {
   // wn = 100 rad/s: symplectic Euler is stable for wn dt < 2; here wn dt = 2.5.
-  json scene = {
-      {"duration", 1.0},
-      {"dt", 0.025},
-      {"integrator", "semi-implicit-euler"},
-      {"bodies",
-       {{{"name", "bob"},
-         {"inertia", {{"principal", {1, 1, 1}}}},
-         {"mass", 1.0},
-         {"position", {0.1, 0, 0}},
-         {"spring", {{"anchor", {0, 0, 0}}, {"attach", {0, 0, 0}}, {"stiffness", 1e4}}}}}}};
+  const json scene =
+      testing::SceneBuilder()
+          .duration(1.0)
+          .dt(0.025)
+          .integrator("semi-implicit-euler")
+          .body(testing::BodyBuilder("bob").principal({1, 1, 1}).mass(1.0).position({0.1, 0, 0}).set(
+              "spring", {{"anchor", {0, 0, 0}}, {"attach", {0, 0, 0}}, {"stiffness", 1e4}}))
+          .json();
   const auto result = simulate(write_scene(scene) + " --csv " + path("out.csv"));
   EXPECT_EQ(result.status, 3);
   EXPECT_THAT(result.err, HasSubstr("body 'bob' at step 1 (t = 0.025 s)"));

@@ -10,6 +10,7 @@
 #include <map>
 #include <sstream>
 
+#include "support/csv_reader.hpp"
 #include "support/run_command.hpp"
 
 namespace tumble::app {
@@ -22,49 +23,12 @@ using tumble::testing::read_text;
 using tumble::testing::run_command;
 using tumble::testing::tumble_executable;
 
-/// Splits one CSV line (quoted fields may hold commas and doubled quotes).
-std::vector<std::string> csv_fields(const std::string& line) {
-  std::vector<std::string> fields(1);
-  bool quoted = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (quoted) {
-      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-        fields.back() += '"';
-        ++i;
-      } else if (c == '"') {
-        quoted = false;
-      } else {
-        fields.back() += c;
-      }
-    } else if (c == '"') {
-      quoted = true;
-    } else if (c == ',') {
-      fields.emplace_back();
-    } else {
-      fields.back() += c;
-    }
-  }
-  return fields;
-}
-
-/// The CSV as rows of column name -> value.
+/// The CSV as rows of column name -> value (RFC 4180, as tumble writes it).
 std::vector<std::map<std::string, std::string>> read_csv(const std::filesystem::path& file,
                                                          std::vector<std::string>* header = nullptr) {
-  std::istringstream in(read_text(file));
-  std::string line;
-  std::getline(in, line);
-  const std::vector<std::string> names = csv_fields(line);
-  if (header) *header = names;
-  std::vector<std::map<std::string, std::string>> rows;
-  while (std::getline(in, line)) {
-    const std::vector<std::string> fields = csv_fields(line);
-    EXPECT_EQ(fields.size(), names.size()) << line;
-    std::map<std::string, std::string> row;
-    for (std::size_t i = 0; i < std::min(fields.size(), names.size()); ++i) row[names[i]] = fields[i];
-    rows.push_back(row);
-  }
-  return rows;
+  testing::CsvTable table = testing::read_csv(file);
+  if (header) *header = table.header;
+  return table.rows;
 }
 
 /// The one row of (case, integrator, rate dt).

@@ -11,6 +11,7 @@
 #include "engine/mass_properties.hpp"
 #include "engine/primitive_meshes.hpp"
 #include "render/camera_math.hpp"
+#include "support/scene_builder.hpp"
 
 namespace tumble::app {
 namespace {
@@ -53,12 +54,17 @@ struct SceneSetup {
 
 /// An asymmetric brick spinning near its middle axis (it flips), given by its inertia only.
 std::string brick_scene(const std::string& render, const std::string& integrator = "rk4") {
-  return R"({"duration": 6, "dt": 0.002, "integrator": ")" + integrator + R"(",
-    "bodies": [{"name": "brick", "inertia": {"principal": [0.4, 0.9, 1.1]}, "mass": 2,
-                "orientation": [0.9, 0.2, -0.3, 0.1],
-                "angular_velocity": [0.05, 3.0, 0.1], "angular_velocity_frame": "body"}],
-    "render": )" +
-         render + "}";
+  return testing::SceneBuilder()
+      .duration(6)
+      .dt(0.002)
+      .integrator(integrator)
+      .body(testing::BodyBuilder("brick")
+                .principal({0.4, 0.9, 1.1})
+                .mass(2)
+                .orientation(0.9, 0.2, -0.3, 0.1)
+                .angular_velocity({0.05, 3.0, 0.1}, "body"))
+      .render(nlohmann::json::parse(render))
+      .text();
 }
 
 /// Advances to the frame time `time` (the last step at or before it).

@@ -14,6 +14,7 @@
 #include "engine/input_error.hpp"
 #include "support/run_command.hpp"
 #include "support/input_error.hpp"
+#include "support/scene_builder.hpp"
 
 namespace tumble::app {
 namespace {
@@ -26,10 +27,7 @@ const std::filesystem::path kFile = "scenes/flip.json";
 
 /// A valid one-body scene to break in one place.
 json base_scene() {
-  return json::parse(R"({
-    "duration": 1.0, "dt": 0.01,
-    "bodies": [{"name": "brick", "inertia": {"principal": [1, 2, 3]}, "mass": 2.0}]
-  })");
+  return testing::SceneBuilder().duration(1.0).dt(0.01).body(testing::BodyBuilder("brick")).json();
 }
 
 /// The message parse_scene throws for `text` (empty, with a test failure, when it accepts it).

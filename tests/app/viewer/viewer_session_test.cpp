@@ -19,6 +19,7 @@
 #include "engine/simulation.hpp"
 #include "render/renderer.hpp"
 #include "support/command_test.hpp"
+#include "support/scene_builder.hpp"
 
 namespace tumble::app::viewer {
 namespace {
@@ -36,13 +37,11 @@ std::filesystem::path asset(const std::string& relative) {
 /// A free brick (moments 1 : 2 : 3) spinning near its intermediate axis; dt = 3 ms divides
 /// neither 0.1 s nor 1/60 s, so rounding to whole steps shows.
 nlohmann::json brick_scene(double duration = 5.0, double dt = 0.003) {
-  return {{"duration", duration},
-          {"dt", dt},
-          {"bodies",
-           {{{"name", "brick"},
-             {"inertia", {{"principal", {1, 2, 3}}}},
-             {"mass", 2.0},
-             {"angular_velocity", {0.1, 2.0, 0.1}}}}}};
+  return testing::SceneBuilder()
+      .duration(duration)
+      .dt(dt)
+      .body(testing::BodyBuilder("brick").angular_velocity({0.1, 2.0, 0.1}))
+      .json();
 }
 
 /// The brick with a constant torque: not torque-free, so the exact integrator refuses it.

@@ -16,6 +16,7 @@
 #include "render/png_io.hpp"
 #include "render/renderer.hpp"
 #include "support/command_test.hpp"
+#include "support/scene_builder.hpp"
 
 namespace tumble::app::viewer {
 namespace {
@@ -25,14 +26,11 @@ using tumble::testing::directory_entries;
 
 /// A free brick drifting along +x at 0.5 m/s while it spins; dt = 5 ms.
 nlohmann::json drifting_brick() {
-  return {{"duration", 20.0},
-          {"dt", 0.005},
-          {"bodies",
-           {{{"name", "brick"},
-             {"inertia", {{"principal", {1, 2, 3}}}},
-             {"mass", 2.0},
-             {"velocity", {0.5, 0.0, 0.0}},
-             {"angular_velocity", {0.1, 2.0, 0.1}}}}}};
+  return testing::SceneBuilder()
+      .duration(20.0)
+      .dt(0.005)
+      .body(testing::BodyBuilder("brick").velocity({0.5, 0.0, 0.0}).angular_velocity({0.1, 2.0, 0.1}))
+      .json();
 }
 
 KeyEvent press(Key key, bool ctrl = false) {
