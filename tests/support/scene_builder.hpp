@@ -98,4 +98,16 @@ class SceneBuilder {
   nlohmann::json json_;
 };
 
+/// A scene of one box-shaped body (given by its moments, no mesh) tumbling about its
+/// intermediate axis, under rk4.
+inline nlohmann::json tumbling_scene(double duration = 0.5, double dt = 0.01) {
+  return SceneBuilder()
+      .name("test tumble")
+      .duration(duration)
+      .dt(dt)
+      .integrator("rk4")
+      .body(BodyBuilder("brick").angular_velocity({0.3, 6.0, 0.3}, "body"))
+      .json();
+}
+
 }  // namespace tumble::testing
