@@ -1,18 +1,17 @@
 // Scene compilation: SceneDescription -> engine bodies, states and settings (the parsing is
 // in scene.cpp).
+#include "app/scene/scene.hpp"
+
 #include <optional>
 #include <string>
 #include <utility>
 
 #include "app/scene/mesh_inspection.hpp"
-#include "app/scene/scene.hpp"
 #include "engine/input_error.hpp"
 #include "engine/integrators.hpp"
 #include "engine/principal_frame.hpp"
 
 namespace tumble::app {
-
-using engine::InputError;
 
 engine::SimulationSettings simulation_settings(const SceneDescription& scene) {
   engine::SimulationSettings settings;
@@ -24,6 +23,8 @@ engine::SimulationSettings simulation_settings(const SceneDescription& scene) {
 }
 
 namespace {
+
+using engine::InputError;
 
 /// A body's mass and inertia about its centre of mass (body frame: a mesh's own axes), with
 /// the principal frame of its mesh, if it has one.
@@ -127,9 +128,10 @@ engine::BodyState initial_state(const BodyDescription& body, const engine::BodyM
   state.position = body.position;
   state.velocity = body.velocity.value_or(Eigen::Vector3d::Zero());
   state.orientation = (body.orientation * model.principal_to_body).normalized();
-  const Eigen::Vector3d omega_world = body.angular_velocity_frame == VectorFrame::kBody
-                                          ? Eigen::Vector3d(body.orientation * body.angular_velocity)
-                                          : body.angular_velocity;
+  const Eigen::Vector3d omega_world =
+      body.angular_velocity_frame == VectorFrame::kBody
+          ? Eigen::Vector3d(body.orientation * body.angular_velocity)
+          : body.angular_velocity;
   const Eigen::Matrix3d rotation = state.orientation.toRotationMatrix();
   state.angular_momentum =
       rotation * (model.moments.asDiagonal() * (rotation.transpose() * omega_world));
