@@ -184,13 +184,9 @@ OrderFit observed_order(const BenchOutcome& outcome, std::size_t scene,
 
 namespace {
 
-/// The scene's section of the report.
-void scene_section(std::ostream& out, const BenchOutcome& outcome, std::size_t s) {
-  const BenchScene& scene = outcome.scenes[s];
-  out << "## " << scene.name << " (`" << scene.file.string() << "`)\n\n"
-      << "- duration " << number(scene.settings.duration, "%.6g") << " s; sampling grid every "
-      << number(scene.grid.interval, "%.6g") << " s (" << scene.grid.count() << " samples)\n"
-      << "- reference: " << scene.reference.description << "\n";
+/// The smallest non-zero final orientation error of scene `s` among the runs that did not
+/// blow up; infinity when there is none.
+double smallest_final_error(const BenchOutcome& outcome, std::size_t s) {
   double smallest = INFINITY;
   for (std::size_t i = 0; i < outcome.cases.size(); ++i) {
     const CaseResult& r = outcome.results[i];
@@ -198,6 +194,17 @@ void scene_section(std::ostream& out, const BenchOutcome& outcome, std::size_t s
       smallest = std::min(smallest, r.errors.orientation_final);
     }
   }
+  return smallest;
+}
+
+/// The heading of scene `s` and its list: grid, reference and its check, invariants.
+void scene_summary(std::ostream& out, const BenchOutcome& outcome, std::size_t s) {
+  const BenchScene& scene = outcome.scenes[s];
+  out << "## " << scene.name << " (`" << scene.file.string() << "`)\n\n"
+      << "- duration " << number(scene.settings.duration, "%.6g") << " s; sampling grid every "
+      << number(scene.grid.interval, "%.6g") << " s (" << scene.grid.count() << " samples)\n"
+      << "- reference: " << scene.reference.description << "\n";
+  const double smallest = smallest_final_error(outcome, s);
   if (const auto& check = scene.reference.check) {
     out << "- reference check (" << check->runs << "): orientation "
         << number(check->orientation, "%.2e") << " rad, world omega "
@@ -212,8 +219,10 @@ void scene_section(std::ostream& out, const BenchOutcome& outcome, std::size_t s
   out << "- invariants: energy " << (scene.conservative ? "is" : "is **not**") << ", |L| "
       << (scene.torque_free ? "is" : "is **not**")
       << " an invariant here (a drift of a non-invariant is not an error)\n\n";
+}
 
-  // The table of runs.
+/// The table of the runs of scene `s`.
+void runs_table(std::ostream& out, const BenchOutcome& outcome, std::size_t s) {
   out << "| integrator | step | steps | time (s) | ns/step | orient. final (rad) | orient. max "
          "(rad) | omega max | L max | energy drift | abs(L) drift |\n"
       << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
@@ -235,8 +244,10 @@ void scene_section(std::ostream& out, const BenchOutcome& outcome, std::size_t s
         << " | " << number(e.energy_drift_max, "%.2e") << " | "
         << number(e.momentum_norm_drift_max, "%.2e") << " |\n";
   }
+}
 
-  // Observed orders.
+/// The observed order of each integrator on scene `s`, against its nominal order.
+void observed_order_table(std::ostream& out, const BenchOutcome& outcome, std::size_t s) {
   out << "\n### Observed order\n\nLeast-squares slope of log(final orientation error) against "
          "log(dt) (dopri: against log(tolerance)), over the runs with an error between "
       << number(kRoundingFloor, "%.0e") << " and " << number(kSaturation, "%.2g")
@@ -254,8 +265,10 @@ void scene_section(std::ostream& out, const BenchOutcome& outcome, std::size_t s
         << " | " << (fit.slope ? number(*fit.slope, "%.2f") : "n/a") << " | " << fit.used
         << " | " << fit.dropped << " |\n";
   }
+}
 
-  // Fastest integrator per accuracy level.
+/// The fastest run of scene `s` to reach each accuracy level.
+void fastest_table(std::ostream& out, const BenchOutcome& outcome, std::size_t s) {
   out << "\n### Fastest to each accuracy (final orientation error)\n\n"
          "| accuracy (rad) | integrator | step | time (s) | error (rad) |\n|---|---|---|---:|---:|\n";
   for (double level : {1e-2, 1e-4, 1e-6, 1e-8, 1e-10}) {
@@ -276,8 +289,10 @@ void scene_section(std::ostream& out, const BenchOutcome& outcome, std::size_t s
     out << c.integrator << " | " << step_text(c) << " | " << number(r.median_seconds, "%.3g")
         << " | " << number(r.errors.orientation_final, "%.2e") << " |\n";
   }
+}
 
-  // Plots.
+/// Links to the work-precision diagrams of a scene.
+void plot_links(std::ostream& out, const BenchScene& scene) {
   out << "\n### Work-precision diagrams\n\n";
   for (const ErrorMeasure& measure : plotted_measures()) {
     const std::string stem = scene.label + "_" + measure.suffix;
@@ -285,6 +300,15 @@ void scene_section(std::ostream& out, const BenchOutcome& outcome, std::size_t s
         << "](" << stem << ".png)\n";
   }
   out << "\n";
+}
+
+/// The scene's section of the report.
+void scene_section(std::ostream& out, const BenchOutcome& outcome, std::size_t s) {
+  scene_summary(out, outcome, s);
+  runs_table(out, outcome, s);
+  observed_order_table(out, outcome, s);
+  fastest_table(out, outcome, s);
+  plot_links(out, outcome.scenes[s]);
 }
 
 }  // namespace

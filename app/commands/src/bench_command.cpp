@@ -94,103 +94,140 @@ std::string scene_label(const std::filesystem::path& file, std::set<std::string>
   return unique;
 }
 
-/// Loads the scenes and lays out every case (no reference yet). Throws InputError.
-void plan(const BenchOptions& options, std::vector<BenchScene>& scenes,
-          std::vector<BenchCase>& cases) {
-  if (options.scenes.empty()) throw InputError("at least one SCENE file is required");
-  if (options.output.empty()) throw InputError("-o DIR is required");
-  const auto integrators = chosen_integrators(options);
-  const bool any_fixed = std::any_of(integrators.begin(), integrators.end(),
-                                     [](const auto* info) { return !info->adaptive; });
+/// The sweep the options ask for, checked against the integrators chosen.
+struct Sweep {
+  std::vector<const engine::IntegratorInfo*> integrators;
+  bool any_fixed = false;
+  std::optional<std::vector<double>> dts;  ///< the given steps, else the scenes' defaults
+  std::vector<double> tolerances;
+  std::optional<double> duration;  ///< replaces every scene's duration
+};
+
+Sweep parse_sweep(const BenchOptions& options) {
+  Sweep sweep;
+  sweep.integrators = chosen_integrators(options);
+  const auto& integrators = sweep.integrators;
+  sweep.any_fixed = std::any_of(integrators.begin(), integrators.end(),
+                                [](const auto* info) { return !info->adaptive; });
   const bool any_adaptive = std::any_of(integrators.begin(), integrators.end(),
                                         [](const auto* info) { return info->adaptive; });
-  if (options.dts && !any_fixed) {
+  if (options.dts && !sweep.any_fixed) {
     throw InputError("--dts: no fixed-step integrator chosen (adaptive ones take --tolerances)");
   }
   if (options.tolerances && !any_adaptive) {
     throw InputError("--tolerances: no adaptive integrator chosen (only dopri takes one)");
   }
-  std::optional<std::vector<double>> dts;
-  if (options.dts) dts = descending_positive_list(*options.dts, "--dts");
-  std::vector<double> tolerances(std::begin(kDefaultTolerances), std::end(kDefaultTolerances));
-  if (options.tolerances) tolerances = descending_positive_list(*options.tolerances, "--tolerances");
-  std::optional<double> duration;
+  if (options.dts) sweep.dts = descending_positive_list(*options.dts, "--dts");
+  sweep.tolerances.assign(std::begin(kDefaultTolerances), std::end(kDefaultTolerances));
+  if (options.tolerances) {
+    sweep.tolerances = descending_positive_list(*options.tolerances, "--tolerances");
+  }
   if (options.duration) {
     const std::vector<double> values = parse_positive_list(*options.duration, "--duration");
     if (values.size() != 1) {
       throw InputError("--duration: expected one positive number, got '" + *options.duration + "'");
     }
-    duration = values.front();
+    sweep.duration = values.front();
   }
+  return sweep;
+}
 
+/// The steps of one scene: the given steps, or the default factors of the scene's dt that fit.
+std::vector<double> scene_steps(const Sweep& sweep, const SceneDescription& description,
+                                const std::filesystem::path& file) {
+  std::vector<double> steps;
+  if (sweep.dts) {
+    steps = *sweep.dts;
+    for (double dt : steps) {
+      if (auto problem = step_problem(dt, description.duration)) {
+        throw InputError("--dts: " + printf_number(dt) + ": " + *problem);
+      }
+    }
+    return steps;
+  }
+  for (double factor : kDefaultStepFactors) {
+    const double dt = description.dt * factor;
+    if (!step_problem(dt, description.duration)) steps.push_back(dt);
+  }
+  if (steps.empty()) throw InputError(file.string() + ": dt: longer than the duration");
+  return steps;
+}
+
+/// The sampling interval: the largest step, which every step must divide.
+double sampling_interval(const Sweep& sweep, const std::vector<double>& steps,
+                         const SceneDescription& description) {
+  const double interval = sweep.any_fixed ? steps.front() : description.dt;
+  for (double dt : steps) {
+    const double ratio = interval / dt;
+    if (std::abs(ratio - std::round(ratio)) > 1e-9 * ratio) {
+      throw InputError("--dts: " + printf_number(dt) + " does not divide the largest step " +
+                       printf_number(interval) + " (the errors are sampled on its grid)");
+    }
+  }
+  return interval;
+}
+
+BenchScene bench_scene(const std::filesystem::path& file, const SceneDescription& description,
+                       double interval, std::set<std::string>& labels) {
+  CompiledScene compiled = compile_scene(description);
+  BenchScene scene;
+  scene.file = file;
+  scene.name = description.name;
+  scene.label = scene_label(file, labels);
+  scene.settings = compiled.settings;
+  scene.grid = {interval, description.duration};
+  scene.torque_free = std::all_of(compiled.bodies.begin(), compiled.bodies.end(),
+                                  [](const auto& body) { return body.torque_free(); });
+  scene.conservative = std::all_of(compiled.bodies.begin(), compiled.bodies.end(),
+                                   [](const auto& body) { return body.conservative(); });
+  scene.bodies = std::move(compiled.bodies);
+  scene.initial = std::move(compiled.initial);
+  return scene;
+}
+
+/// The cases of the last scene: fixed-step integrators over the steps, adaptive ones over the
+/// tolerances.
+void add_cases(const Sweep& sweep, const std::vector<BenchScene>& scenes,
+               const std::vector<double>& steps, std::vector<BenchCase>& cases) {
+  const double interval = scenes.back().grid.interval;
+  for (const auto* info : sweep.integrators) {
+    BenchCase c;
+    c.scene = scenes.size() - 1;
+    c.integrator = info->name;
+    c.kind = info->kind;
+    c.order = info->order;
+    c.adaptive = info->adaptive;
+    if (info->adaptive) {
+      // About kAdaptiveSamples samples: an output step of a whole number of intervals.
+      const std::size_t count = scenes.back().grid.count();
+      c.dt = interval * static_cast<double>(std::max<std::size_t>(1, count / kAdaptiveSamples));
+      for (double tolerance : sweep.tolerances) {
+        c.tolerance = tolerance;
+        cases.push_back(c);
+      }
+    } else {
+      for (double dt : steps) {
+        c.dt = dt;
+        cases.push_back(c);
+      }
+    }
+  }
+}
+
+/// Loads the scenes and lays out every case (no reference yet). Throws InputError.
+void plan(const BenchOptions& options, std::vector<BenchScene>& scenes,
+          std::vector<BenchCase>& cases) {
+  if (options.scenes.empty()) throw InputError("at least one SCENE file is required");
+  if (options.output.empty()) throw InputError("-o DIR is required");
+  const Sweep sweep = parse_sweep(options);
   std::set<std::string> labels;
   for (const std::filesystem::path& file : options.scenes) {
     SceneDescription description = load_scene(file);
-    if (duration) description.duration = *duration;
-    // The sweep: the given steps, or the default factors of the scene's dt that fit.
-    std::vector<double> steps;
-    if (dts) {
-      steps = *dts;
-      for (double dt : steps) {
-        if (auto problem = step_problem(dt, description.duration)) {
-          throw InputError("--dts: " + printf_number(dt) + ": " + *problem);
-        }
-      }
-    } else {
-      for (double factor : kDefaultStepFactors) {
-        const double dt = description.dt * factor;
-        if (!step_problem(dt, description.duration)) steps.push_back(dt);
-      }
-      if (steps.empty()) throw InputError(file.string() + ": dt: longer than the duration");
-    }
-    // The sampling interval is the largest step; every step must divide it.
-    const double interval = any_fixed ? steps.front() : description.dt;
-    for (double dt : steps) {
-      const double ratio = interval / dt;
-      if (std::abs(ratio - std::round(ratio)) > 1e-9 * ratio) {
-        throw InputError("--dts: " + printf_number(dt) + " does not divide the largest step " +
-                         printf_number(interval) + " (the errors are sampled on its grid)");
-      }
-    }
-
-    CompiledScene compiled = compile_scene(description);
-    BenchScene scene;
-    scene.file = file;
-    scene.name = description.name;
-    scene.label = scene_label(file, labels);
-    scene.settings = compiled.settings;
-    scene.grid = {interval, description.duration};
-    scene.torque_free = std::all_of(compiled.bodies.begin(), compiled.bodies.end(),
-                                    [](const auto& body) { return body.torque_free(); });
-    scene.conservative = std::all_of(compiled.bodies.begin(), compiled.bodies.end(),
-                                     [](const auto& body) { return body.conservative(); });
-    scene.bodies = std::move(compiled.bodies);
-    scene.initial = std::move(compiled.initial);
-    scenes.push_back(std::move(scene));
-
-    // Cases: fixed-step integrators over the steps, adaptive ones over the tolerances.
-    for (const auto* info : integrators) {
-      BenchCase c;
-      c.scene = scenes.size() - 1;
-      c.integrator = info->name;
-      c.kind = info->kind;
-      c.order = info->order;
-      c.adaptive = info->adaptive;
-      if (info->adaptive) {
-        // About kAdaptiveSamples samples: an output step of a whole number of intervals.
-        const std::size_t count = scenes.back().grid.count();
-        c.dt = interval * static_cast<double>(std::max<std::size_t>(1, count / kAdaptiveSamples));
-        for (double tolerance : tolerances) {
-          c.tolerance = tolerance;
-          cases.push_back(c);
-        }
-      } else {
-        for (double dt : steps) {
-          c.dt = dt;
-          cases.push_back(c);
-        }
-      }
-    }
+    if (sweep.duration) description.duration = *sweep.duration;
+    const std::vector<double> steps = scene_steps(sweep, description, file);
+    const double interval = sampling_interval(sweep, steps, description);
+    scenes.push_back(bench_scene(file, description, interval, labels));
+    add_cases(sweep, scenes, steps, cases);
   }
 }
 

@@ -1,5 +1,5 @@
-// Scene files: parsing and validation (JSON -> SceneDescription), then compilation
-// (SceneDescription -> engine bodies, states and settings).
+// Scene files: parsing and validation (JSON -> SceneDescription); the compilation to engine
+// bodies, states and settings is in scene_compile.cpp.
 #include "app/scene/scene.hpp"
 
 #include <charconv>
@@ -14,7 +14,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/scene/mesh_inspection.hpp"
 #include "app/scene/json_field.hpp"
 #include "app/scene/strict_json.hpp"
 #include "app/support/text_file.hpp"
@@ -119,14 +118,8 @@ SpringDescription parse_spring(const Field& field) {
   return spring;
 }
 
-BodyDescription parse_body(const Field& field, std::size_t index,
-                           const std::filesystem::path& folder) {
-  field.expect_object({"name", "mesh", "inertia", "mass", "density", "scale", "position",
-                       "orientation", "velocity", "angular_velocity", "angular_velocity_frame",
-                       "pivot", "torque", "torque_frame", "spring"});
-  BodyDescription body;
-
-  // Name: unique and printable (it keys the CSV rows); checked for uniqueness by the caller.
+/// Name: non-empty and printable (it keys the CSV rows); unique, as the caller checks.
+void parse_body_name(const Field& field, std::size_t index, BodyDescription& body) {
   body.name = "body" + std::to_string(index);
   if (auto name = field.find("name")) {
     body.name = name->string();
@@ -136,8 +129,11 @@ BodyDescription parse_body(const Field& field, std::size_t index,
         name->fail("expected a name without control characters");
     }
   }
+}
 
-  // Shape: a mesh or an inertia, never both.
+/// Shape: a mesh (relative to the scene's folder) or an inertia, never both.
+void parse_body_shape(const Field& field, const std::filesystem::path& folder,
+                      BodyDescription& body) {
   const auto mesh = field.find("mesh");
   const auto inertia = field.find("inertia");
   if (mesh.has_value() == inertia.has_value()) {
@@ -153,8 +149,11 @@ BodyDescription parse_body(const Field& field, std::size_t index,
   } else {
     parse_inertia(*inertia, body);
   }
+}
 
-  // Matter: mass or density with a mesh, mass with an inertia; scale with a mesh only.
+/// Matter: mass or density with a mesh, mass with an inertia; scale with a mesh only.
+void parse_body_matter(const Field& field, BodyDescription& body) {
+  const bool mesh = body.mesh.has_value();
   const auto mass = field.find("mass");
   const auto density = field.find("density");
   if (mass && density) density->fail("\"mass\" and \"density\" exclude each other: give one");
@@ -171,8 +170,9 @@ BodyDescription parse_body(const Field& field, std::size_t index,
     if (!mesh) scale->fail("\"scale\" applies to a mesh only (mesh units to metres)");
     body.scale = scale->positive();
   }
+}
 
-  // Initial state.
+void parse_initial_state(const Field& field, BodyDescription& body) {
   if (auto position = field.find("position")) body.position = position->vector3();
   if (auto orientation = field.find("orientation"))
     body.orientation = parse_quaternion(*orientation);
@@ -190,14 +190,28 @@ BodyDescription parse_body(const Field& field, std::size_t index,
     }
     body.velocity = velocity->vector3();
   }
+}
 
-  // Loads.
+void parse_loads(const Field& field, BodyDescription& body) {
   if (auto torque = field.find("torque")) body.torque = torque->vector3();
   if (auto frame = field.find("torque_frame")) {
     if (!body.torque) frame->fail("given without \"torque\"");
     body.torque_frame = parse_frame(*frame);
   }
   if (auto spring = field.find("spring")) body.spring = parse_spring(*spring);
+}
+
+BodyDescription parse_body(const Field& field, std::size_t index,
+                           const std::filesystem::path& folder) {
+  field.expect_object({"name", "mesh", "inertia", "mass", "density", "scale", "position",
+                       "orientation", "velocity", "angular_velocity", "angular_velocity_frame",
+                       "pivot", "torque", "torque_frame", "spring"});
+  BodyDescription body;
+  parse_body_name(field, index, body);
+  parse_body_shape(field, folder, body);
+  parse_body_matter(field, body);
+  parse_initial_state(field, body);
+  parse_loads(field, body);
   return body;
 }
 
@@ -272,134 +286,6 @@ std::optional<std::string> step_problem(double dt, double duration) {
 
 SceneDescription load_scene(const std::filesystem::path& file) {
   return parse_scene(read_text_file(file, "scene file (JSON)"), file);
-}
-
-engine::SimulationSettings simulation_settings(const SceneDescription& scene) {
-  engine::SimulationSettings settings;
-  settings.integrator = engine::integrator_from_name(scene.integrator).value();
-  settings.dt = scene.dt;
-  settings.duration = scene.duration;
-  if (scene.tolerance) settings.tolerance = *scene.tolerance;
-  return settings;
-}
-
-CompiledScene compile_scene(const SceneDescription& scene, bool keep_geometry) {
-  CompiledScene out;
-  out.geometry.resize(scene.bodies.size());
-  out.reports.resize(scene.bodies.size());
-  const std::string source = scene.file.string();
-
-  out.settings = simulation_settings(scene);
-
-  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    const BodyDescription& body = scene.bodies[i];
-    const std::string where = source + ": bodies[" + std::to_string(i) + "]";
-    engine::BodyModel model;
-    model.name = body.name;
-
-    // Mass and inertia about the centre of mass, body frame (a mesh's own axes).
-    std::optional<engine::PrincipalFrame> mesh_principal;
-    Eigen::Matrix3d inertia_com;
-    if (body.mesh) {
-      engine::MassOptions options;
-      options.mass = body.mass;
-      options.density = body.density;
-      options.scale = body.scale;
-      engine::MeshReport report;
-      engine::TriangleMesh shape;
-      try {
-        report = inspect_file(*body.mesh, options, keep_geometry ? &shape : nullptr);
-      } catch (const InputError& error) {
-        throw InputError(where + ".mesh: " + error.what());
-      }
-      ++out.meshes_imported;
-      if (keep_geometry) {
-        // The drawing needs the triangles in the body frame: the file's axes, scaled, with the
-        // centre of mass at the origin.
-        for (Eigen::Vector3d& p : shape.positions) {
-          p = p * body.scale - report.mass_properties.center_of_mass;
-        }
-        if (report.flipped) {  // an inside-out file: draw it outward, as it was integrated
-          for (auto& t : shape.triangles) std::swap(t[1], t[2]);
-        }
-        out.geometry[i] = std::move(shape);
-      }
-      model.mass = report.mass_properties.mass;
-      inertia_com = report.mass_properties.inertia;
-      mesh_principal = report.principal;
-      out.reports[i] = std::move(report);
-    } else {
-      model.mass = body.mass.value();
-      inertia_com = body.inertia_tensor ? *body.inertia_tensor
-                                        : Eigen::Matrix3d(body.principal_moments->asDiagonal());
-    }
-
-    // Inertia about the rotation centre (parallel axes for a pivot) and its principal frame.
-    // A free mesh body keeps the report's frame; a diagonal, ascending inertia keeps the user's.
-    const Eigen::Vector3d centre = body.pivot.value_or(Eigen::Vector3d::Zero());  // body frame
-    const engine::MassProperties about_com{model.mass, Eigen::Vector3d::Zero(), inertia_com};
-    const Eigen::Matrix3d inertia = about_com.inertia_about(centre);
-    engine::PrincipalFrame frame;
-    const Eigen::Vector3d diagonal = inertia.diagonal();
-    if (mesh_principal && !body.pivot) {
-      frame = *mesh_principal;
-    } else if (inertia.isDiagonal(0.0) && diagonal[0] <= diagonal[1] &&
-               diagonal[1] <= diagonal[2]) {
-      frame.moments = diagonal;
-      frame.axes.setIdentity();
-    } else {
-      frame = engine::principal_frame(inertia);
-    }
-    if (auto problem = engine::principal_moments_problem(frame.moments)) {
-      throw InputError(where + (body.pivot ? ".pivot: inertia about the pivot: " : ": ") +
-                       *problem);
-    }
-    const Eigen::Quaterniond principal_to_body = Eigen::Quaterniond(frame.axes).normalized();
-    const Eigen::Matrix3d body_to_principal = frame.axes.transpose();
-    model.moments = frame.moments;
-    model.principal_to_body = principal_to_body;
-    model.center_offset = body_to_principal * -centre;  // the centre of mass from the centre
-    if (body.pivot) {
-      model.pivoted = true;
-      model.pivot = body.position + body.orientation * centre;
-    }
-
-    // Force terms: only those the scene asks for.
-    if (scene.gravity) model.forces.emplace_back(engine::Gravity{*scene.gravity});
-    if (body.torque) {
-      engine::ConstantTorque torque;
-      torque.body_frame = body.torque_frame == VectorFrame::kBody;
-      torque.torque =
-          torque.body_frame ? Eigen::Vector3d(body_to_principal * *body.torque) : *body.torque;
-      model.forces.emplace_back(torque);
-    }
-    if (body.spring) {
-      engine::Spring spring;
-      spring.anchor = body.spring->anchor;
-      spring.attach = body_to_principal * (body.spring->attach - centre);
-      spring.stiffness = body.spring->stiffness;
-      spring.damping = body.spring->damping;
-      model.forces.emplace_back(spring);
-    }
-
-    // Initial state: principal orientation, world L = R J R^T w about the rotation centre.
-    engine::BodyState state;
-    state.position = body.position;
-    state.velocity = body.velocity.value_or(Eigen::Vector3d::Zero());
-    state.orientation = (body.orientation * principal_to_body).normalized();
-    const Eigen::Vector3d omega_world =
-        body.angular_velocity_frame == VectorFrame::kBody
-            ? Eigen::Vector3d(body.orientation * body.angular_velocity)
-            : body.angular_velocity;
-    const Eigen::Matrix3d rotation = state.orientation.toRotationMatrix();
-    state.angular_momentum =
-        rotation * (model.moments.asDiagonal() * (rotation.transpose() * omega_world));
-    if (model.pivoted) engine::update_pivot_kinematics(model, state);
-
-    out.bodies.push_back(std::move(model));
-    out.initial.push_back(state);
-  }
-  return out;
 }
 
 std::string integrator_names() {

@@ -1,10 +1,11 @@
+// The viewer's panels: the main window and its "Simulation", "Integrator" and "Files" sections,
+// the help and notices windows (the other sections are in viewer_panels_*.cpp).
 #include "app/viewer/viewer_panels.hpp"
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <optional>
 #include <string>
@@ -13,12 +14,10 @@
 #include "app/viewer/viewer_initial_state.hpp"
 #include "engine/input_error.hpp"
 #include "engine/integrators.hpp"
+#include "viewer_panels_common.hpp"
 
 namespace tumble::app::viewer {
 namespace {
-
-const ImVec4 kErrorColour{1.0f, 0.45f, 0.40f, 1.0f};
-const ImVec4 kDimColour{0.70f, 0.70f, 0.70f, 1.0f};
 
 /// Index of `name` in the integrator catalogue (0 when absent).
 int catalog_index(const std::string& name) {
@@ -29,88 +28,18 @@ int catalog_index(const std::string& name) {
   return 0;
 }
 
-/// One line of a plot.
-struct Series {
-  const char* name;
-  const std::vector<float>* values;
-  ImU32 colour;
-};
+}  // namespace
 
-/// Several series in one frame filling the panel's width, each decimated to a min/max pair per
-/// two pixels (so a long history costs the same as a short one: llvmpipe pays per triangle),
-/// with the latest values as a legend above it.
-void plot(const std::vector<Series>& series, float height) {
-  // Legend: the latest value of each series in its colour.
-  for (std::size_t k = 0; k < series.size(); ++k) {
-    if (k > 0) ImGui::SameLine();
-    const std::vector<float>& values = *series[k].values;
-    ImGui::PushStyleColor(ImGuiCol_Text, series[k].colour);
-    ImGui::Text("%s %.3g", series[k].name, values.empty() ? 0.0 : double{values.back()});
-    ImGui::PopStyleColor();
-  }
-  const ImVec2 origin = ImGui::GetCursorScreenPos();
-  const float width = ImGui::GetContentRegionAvail().x;
-  ImGui::Dummy(ImVec2(width, height));
-  ImDrawList* draw = ImGui::GetWindowDrawList();
-  draw->AddRectFilled(origin, ImVec2(origin.x + width, origin.y + height),
-                      ImGui::GetColorU32(ImGuiCol_FrameBg));
-
-  // A common vertical range; a flat one is widened so a constant draws mid-height.
-  float low = FLT_MAX;
-  float high = -FLT_MAX;
-  for (const Series& line : series) {
-    for (float v : *line.values) {
-      if (std::isfinite(v)) {
-        low = std::min(low, v);
-        high = std::max(high, v);
-      }
+void body_combo(const char* label, float width, const std::vector<engine::BodyModel>& bodies,
+                std::size_t& chosen) {
+  ImGui::SetNextItemWidth(width);
+  if (ImGui::BeginCombo(label, bodies[chosen].name.c_str())) {
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      if (ImGui::Selectable(bodies[i].name.c_str(), i == chosen)) chosen = i;
     }
-  }
-  if (low > high) return;
-  if (high - low < 1e-30f) {
-    low -= 1.0f;
-    high += 1.0f;
-  }
-  const int buckets = std::max(1, static_cast<int>(width / 2.0f));
-  std::vector<ImVec2> points;
-  for (const Series& line : series) {
-    const std::vector<float>& values = *line.values;
-    if (values.size() < 2) continue;
-    points.clear();
-    const auto to_screen = [&](double fraction, float v) {
-      return ImVec2(origin.x + static_cast<float>(fraction) * width,
-                    origin.y + height - 2.0f - (v - low) / (high - low) * (height - 4.0f));
-    };
-    const std::size_t n = values.size();
-    if (n <= static_cast<std::size_t>(2 * buckets)) {
-      for (std::size_t i = 0; i < n; ++i) {
-        points.push_back(to_screen(static_cast<double>(i) / static_cast<double>(n - 1), values[i]));
-      }
-    } else {
-      // Each bucket's minimum and maximum, in the order they occur.
-      for (int b = 0; b < buckets; ++b) {
-        const std::size_t first =
-            n * static_cast<std::size_t>(b) / static_cast<std::size_t>(buckets);
-        const std::size_t last =
-            n * static_cast<std::size_t>(b + 1) / static_cast<std::size_t>(buckets);
-        std::size_t lo = first;
-        std::size_t hi = first;
-        for (std::size_t i = first; i < last; ++i) {
-          if (values[i] < values[lo]) lo = i;
-          if (values[i] > values[hi]) hi = i;
-        }
-        for (std::size_t i : {std::min(lo, hi), std::max(lo, hi)}) {
-          points.push_back(
-              to_screen(static_cast<double>(i) / static_cast<double>(n - 1), values[i]));
-        }
-      }
-    }
-    draw->AddPolyline(points.data(), static_cast<int>(points.size()), line.colour, ImDrawFlags_None,
-                      1.0f);
+    ImGui::EndCombo();
   }
 }
-
-}  // namespace
 
 void Panels::draw(Viewer& viewer, const FrameStats& stats, int width, int height) {
   sync(viewer);
@@ -247,176 +176,6 @@ void Panels::integrator_section(Viewer& viewer) {
     ImGui::BulletText("%s: %s, dt = %g s", colour.c_str(), session.integrator(k).c_str(),
                       session.dt(k));
   }
-}
-
-void Panels::initial_state_section(Viewer& viewer) {
-  Session& session = viewer.session();
-  if (!ImGui::CollapsingHeader("Initial state")) return;
-  const auto& bodies = session.compiled().bodies;
-  if (bodies.size() > 1) {
-    ImGui::SetNextItemWidth(180.0f);
-    if (ImGui::BeginCombo("body", bodies[viewer.selected_body].name.c_str())) {
-      for (std::size_t i = 0; i < bodies.size(); ++i) {
-        if (ImGui::Selectable(bodies[i].name.c_str(), i == viewer.selected_body)) {
-          viewer.selected_body = i;
-        }
-      }
-      ImGui::EndCombo();
-    }
-  }
-  const std::size_t body = std::min(viewer.selected_body, bodies.size() - 1);
-  const engine::BodyModel& model = bodies[body];
-
-  // Angular velocity and orientation.
-  int frame = omega_frame_ == VectorFrame::kBody ? 1 : 0;
-  ImGui::RadioButton("world", &frame, 0);
-  ImGui::SameLine();
-  ImGui::RadioButton("body frame", &frame, 1);
-  omega_frame_ = frame == 1 ? VectorFrame::kBody : VectorFrame::kWorld;
-  ImGui::InputScalarN("w (rad/s)", ImGuiDataType_Double, omega_.data(), 3, nullptr, nullptr,
-                      "%.4g");
-  ImGui::InputScalarN("yaw pitch roll", ImGuiDataType_Double, ypr_deg_.data(), 3, nullptr, nullptr,
-                      "%.2f");
-  const auto apply = [&](const engine::BodyState& state) {
-    try {
-      session.set_initial_state(body, state);
-    } catch (const std::exception& error) {
-      viewer.notify(error.what(), true);
-    }
-  };
-  if (ImGui::Button("Apply (restart)##state")) {
-    engine::BodyState state = session.initial_state(body);
-    const Eigen::Vector3d ypr(ypr_deg_[0], ypr_deg_[1], ypr_deg_[2]);
-    const Eigen::Vector3d omega(omega_[0], omega_[1], omega_[2]);
-    if (!ypr.allFinite() || !omega.allFinite()) {
-      viewer.notify("initial state: every value must be a finite number", true);
-    } else {
-      set_orientation_ypr_deg(model, state, ypr);
-      set_initial_omega(model, state, omega, omega_frame_);
-      apply(state);
-    }
-  }
-
-  // Presets: spin about a principal axis with a small perturbation.
-  ImGui::SetNextItemWidth(120.0f);
-  ImGui::InputDouble("rate (rad/s)", &preset_rate_, 0.0, 0.0, "%.4g");
-  static constexpr const char* kPresetNames[3] = {"axis 1 (min)", "axis 2 (mid)", "axis 3 (max)"};
-  for (int axis = 0; axis < 3; ++axis) {
-    if (axis > 0) ImGui::SameLine();
-    if (ImGui::Button(kPresetNames[axis])) {
-      if (!(std::abs(preset_rate_) < 1e9)) {
-        viewer.notify("rate: expected a finite number of rad/s", true);
-      } else {
-        engine::BodyState state = session.initial_state(body);
-        preset_principal_spin(model, state, axis, preset_rate_, kPresetPerturbation);
-        apply(state);
-      }
-    }
-  }
-  ImGui::TextColored(kDimColour, "spin about a principal axis, %g%% off it",
-                     100.0 * kPresetPerturbation);
-
-  // A top: tilt and spin.
-  if (is_top(model)) {
-    ImGui::SetNextItemWidth(120.0f);
-    ImGui::InputDouble("tilt (deg)", &tilt_deg_, 0.0, 0.0, "%.3g");
-    ImGui::SetNextItemWidth(120.0f);
-    ImGui::InputDouble("spin (rad/s)", &spin_, 0.0, 0.0, "%.4g");
-    if (ImGui::Button("Apply top")) {
-      if (!std::isfinite(tilt_deg_) || !std::isfinite(spin_)) {
-        viewer.notify("top: tilt and spin must be finite numbers", true);
-      } else {
-        engine::BodyState state = session.initial_state(body);
-        set_top_pose(model, state, {tilt_deg_, spin_});
-        apply(state);
-      }
-    }
-  }
-}
-
-void Panels::show_section(Viewer& viewer) {
-  Session& session = viewer.session();
-  if (!ImGui::CollapsingHeader("Show")) return;
-  ShowSettings& show = session.show();
-  ImGui::Checkbox("bodies", &show.bodies);
-  ImGui::SameLine(180.0f);
-  ImGui::Checkbox("ground", &show.ground);
-  ImGui::Checkbox("body axes", &show.body_axes);
-  ImGui::SameLine(180.0f);
-  ImGui::Checkbox("principal axes", &show.principal_axes);
-  ImGui::Checkbox("w arrow", &show.angular_velocity);
-  ImGui::SameLine(180.0f);
-  ImGui::Checkbox("L arrow", &show.angular_momentum);
-  ImGui::Checkbox("trails", &session.show_trails());
-  ImGui::SameLine(180.0f);
-  ImGui::Checkbox("inertia ellipsoid", &show.inertia_ellipsoid);
-  ImGui::Checkbox("polhode", &show.polhode);
-  ImGui::SameLine(180.0f);
-  ImGui::Checkbox("herpolhode", &show.herpolhode);
-  ImGui::Checkbox("overlay and plots", &show.overlay);
-}
-
-void Panels::camera_section(Viewer& viewer) {
-  if (!ImGui::CollapsingHeader("Camera")) return;
-  const auto& bodies = viewer.session().compiled().bodies;
-  ImGui::Checkbox("follow", &viewer.follow);
-  if (bodies.size() > 1) {
-    ImGui::SameLine();
-    ImGui::SetNextItemWidth(160.0f);
-    if (ImGui::BeginCombo("##follow", bodies[viewer.follow_body].name.c_str())) {
-      for (std::size_t i = 0; i < bodies.size(); ++i) {
-        if (ImGui::Selectable(bodies[i].name.c_str(), i == viewer.follow_body)) {
-          viewer.follow_body = i;
-        }
-      }
-      ImGui::EndCombo();
-    }
-  }
-  if (ImGui::Button("Reset camera")) viewer.reset_camera();
-  const OrbitCamera& camera = viewer.camera();
-  ImGui::TextColored(kDimColour, "azimuth %.0f, elevation %.0f deg, distance %.3g m",
-                     camera.azimuth_deg(), camera.elevation_deg(), camera.distance());
-  ImGui::TextColored(kDimColour, "drag to orbit, wheel to zoom");
-}
-
-void Panels::inspector_section(Viewer& viewer) {
-  const Session& session = viewer.session();
-  if (!ImGui::CollapsingHeader("Inspector")) return;
-  const auto& bodies = session.compiled().bodies;
-  const std::size_t body = std::min(viewer.selected_body, bodies.size() - 1);
-  ImGui::TextColored(kDimColour, "body: %s (choose it under Initial state)",
-                     bodies[body].name.c_str());
-  for (const std::string& warning : session.inspector_warnings(body)) {
-    ImGui::TextColored(kErrorColour, "warning: %s", warning.c_str());
-  }
-  if (report_generation_ != session.generation() || report_body_ != body) {
-    report_ = session.inspector_text(body);
-    report_generation_ = session.generation();
-    report_body_ = body;
-  }
-  const std::string& report = report_;
-  ImGui::BeginChild("report", ImVec2(0, 220), true, ImGuiWindowFlags_HorizontalScrollbar);
-  ImGui::TextUnformatted(report.c_str());
-  ImGui::EndChild();
-}
-
-void Panels::plots_section(Viewer& viewer) {
-  Session& session = viewer.session();
-  if (!ImGui::CollapsingHeader("Plots", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  const History& history = session.history();
-  ImGui::TextColored(kDimColour, "relative drift of the invariants");
-  plot({{"energy", &history.energy_drift, IM_COL32(250, 200, 60, 255)},
-        {"|L|", &history.momentum_drift, IM_COL32(200, 140, 255, 255)}},
-       60.0f);
-  const auto& bodies = session.compiled().bodies;
-  ImGui::TextColored(kDimColour, "w of %s in its body frame (rad/s)",
-                     bodies[std::min(session.plotted_body(), bodies.size() - 1)].name.c_str());
-  plot({{"x", &history.omega[0], IM_COL32(240, 90, 80, 255)},
-        {"y", &history.omega[1], IM_COL32(100, 220, 100, 255)},
-        {"z", &history.omega[2], IM_COL32(100, 150, 255, 255)}},
-       80.0f);
-  if (viewer.selected_body != session.plotted_body())
-    session.set_plotted_body(viewer.selected_body);
 }
 
 void Panels::files_section(Viewer& viewer) {

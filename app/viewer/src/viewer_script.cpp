@@ -124,37 +124,80 @@ class LineReader {
   std::size_t position_ = 0;
 };
 
+void add_event(std::vector<ScriptStep>& steps, double at, InputEvent event) {
+  steps.push_back({at, std::move(event)});
+}
+
+/// Keys: a stroke is press, release, then the modifiers let go.
+void parse_key(LineReader& line, const std::string& verb, double time,
+               std::vector<ScriptStep>& steps) {
+  KeyEvent event = line.chord();
+  line.finish(verb + " CHORD");
+  if (verb != "keyup") add_event(steps, time, event);
+  if (verb != "keydown") {
+    event.down = false;
+    add_event(steps, time, event);
+  }
+  if (verb == "key" && event.modifiers != Modifiers{}) {
+    add_event(steps, time, KeyEvent{Key::kUnknown, false, Modifiers{}});
+  }
+}
+
+/// Buttons: click is press and release 50 ms apart at one place.
+void parse_button(LineReader& line, const std::string& verb, double time,
+                  std::vector<ScriptStep>& steps) {
+  const auto x = static_cast<float>(line.number("X"));
+  const auto y = static_cast<float>(line.number("Y"));
+  const int button = line.button();
+  line.finish(verb + " X Y [BUTTON]");
+  // The pointer gets there first, so ImGui knows what is under it when the button changes.
+  add_event(steps, time, MouseMoveEvent{x, y});
+  if (verb != "release") add_event(steps, time, MouseButtonEvent{button, true, x, y});
+  if (verb != "press") {
+    add_event(steps, verb == "click" ? time + kClickSeconds : time,
+              MouseButtonEvent{button, false, x, y});
+  }
+}
+
+/// Drag: press at the start, evenly spaced moves to the end, release there.
+void parse_drag(LineReader& line, double time, std::vector<ScriptStep>& steps) {
+  const double x1 = line.number("X1");
+  const double y1 = line.number("Y1");
+  const double x2 = line.number("X2");
+  const double y2 = line.number("Y2");
+  const int button = line.button();
+  line.finish("drag X1 Y1 X2 Y2 [BUTTON]");
+  add_event(steps, time, MouseMoveEvent{static_cast<float>(x1), static_cast<float>(y1)});
+  add_event(steps, time,
+            MouseButtonEvent{button, true, static_cast<float>(x1), static_cast<float>(y1)});
+  for (int i = 1; i <= kDragMoves; ++i) {
+    const double f = static_cast<double>(i) / kDragMoves;
+    add_event(steps, time + f * kDragSeconds,
+              MouseMoveEvent{static_cast<float>(x1 + f * (x2 - x1)),
+                             static_cast<float>(y1 + f * (y2 - y1))});
+  }
+  add_event(steps, time + kDragSeconds,
+            MouseButtonEvent{button, false, static_cast<float>(x2), static_cast<float>(y2)});
+}
+
 /// Appends the steps of one line (`time` and verb already read).
 void parse_action(LineReader& line, const std::string& verb, double time,
                   std::vector<ScriptStep>& steps) {
-  const auto add = [&](double at, auto action) { steps.push_back({at, std::move(action)}); };
-  const auto add_event = [&](double at, InputEvent event) { add(at, std::move(event)); };
-
-  // Keys: a stroke is press, release, then the modifiers let go.
   if (verb == "key" || verb == "keydown" || verb == "keyup") {
-    KeyEvent event = line.chord();
-    line.finish(verb + " CHORD");
-    if (verb != "keyup") add_event(time, event);
-    if (verb != "keydown") {
-      event.down = false;
-      add_event(time, event);
-    }
-    if (verb == "key" && event.modifiers != Modifiers{}) {
-      add_event(time, KeyEvent{Key::kUnknown, false, Modifiers{}});
-    }
+    parse_key(line, verb, time, steps);
     return;
   }
   // Text, dropped files and screenshots take the rest of the line.
   if (verb == "type") {
-    add_event(time, TextEvent{line.rest("text for type")});
+    add_event(steps, time, TextEvent{line.rest("text for type")});
     return;
   }
   if (verb == "drop") {
-    add_event(time, DropEvent{line.rest("a path for drop")});
+    add_event(steps, time, DropEvent{line.rest("a path for drop")});
     return;
   }
   if (verb == "screenshot") {
-    add(time, ScreenshotRequest{line.rest("a path for screenshot")});
+    steps.push_back({time, ScreenshotRequest{line.rest("a path for screenshot")}});
     return;
   }
   // Pointer and wheel.
@@ -162,52 +205,26 @@ void parse_action(LineReader& line, const std::string& verb, double time,
     const double x = line.number("X");
     const double y = line.number("Y");
     line.finish("move X Y");
-    add_event(time, MouseMoveEvent{static_cast<float>(x), static_cast<float>(y)});
+    add_event(steps, time, MouseMoveEvent{static_cast<float>(x), static_cast<float>(y)});
     return;
   }
   if (verb == "wheel") {
     const double dy = line.number("DY");
     line.finish("wheel DY");
-    add_event(time, WheelEvent{static_cast<float>(dy)});
+    add_event(steps, time, WheelEvent{static_cast<float>(dy)});
     return;
   }
-  // Buttons: click is press and release 50 ms apart at one place.
   if (verb == "click" || verb == "press" || verb == "release") {
-    const auto x = static_cast<float>(line.number("X"));
-    const auto y = static_cast<float>(line.number("Y"));
-    const int button = line.button();
-    line.finish(verb + " X Y [BUTTON]");
-    // The pointer gets there first, so ImGui knows what is under it when the button changes.
-    add_event(time, MouseMoveEvent{x, y});
-    if (verb != "release") add_event(time, MouseButtonEvent{button, true, x, y});
-    if (verb != "press") {
-      add_event(verb == "click" ? time + kClickSeconds : time,
-                MouseButtonEvent{button, false, x, y});
-    }
+    parse_button(line, verb, time, steps);
     return;
   }
-  // Drag: press at the start, evenly spaced moves to the end, release there.
   if (verb == "drag") {
-    const double x1 = line.number("X1");
-    const double y1 = line.number("Y1");
-    const double x2 = line.number("X2");
-    const double y2 = line.number("Y2");
-    const int button = line.button();
-    line.finish("drag X1 Y1 X2 Y2 [BUTTON]");
-    add_event(time, MouseMoveEvent{static_cast<float>(x1), static_cast<float>(y1)});
-    add_event(time, MouseButtonEvent{button, true, static_cast<float>(x1), static_cast<float>(y1)});
-    for (int i = 1; i <= kDragMoves; ++i) {
-      const double f = static_cast<double>(i) / kDragMoves;
-      add_event(time + f * kDragSeconds, MouseMoveEvent{static_cast<float>(x1 + f * (x2 - x1)),
-                                                        static_cast<float>(y1 + f * (y2 - y1))});
-    }
-    add_event(time + kDragSeconds,
-              MouseButtonEvent{button, false, static_cast<float>(x2), static_cast<float>(y2)});
+    parse_drag(line, time, steps);
     return;
   }
   if (verb == "quit") {
     line.finish("quit");
-    add_event(time, QuitEvent{});
+    add_event(steps, time, QuitEvent{});
     return;
   }
   line.fail(std::string("a verb (") + kVerbs + ")", verb);

@@ -22,6 +22,8 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "app/video/render_job.hpp"
@@ -32,122 +34,74 @@
 #include "engine/input_error.hpp"
 #include "render/imgui_layer.hpp"
 #include "render/renderer.hpp"
+#include "sdl_input.hpp"
 
 namespace tumble::app {
 namespace {
 
 using viewer::InputEvent;
-using viewer::Key;
 
-/// SDL's key code as the viewer's Key.
-Key key_from_sdl(SDL_Keycode code) {
-  if (code >= SDLK_a && code <= SDLK_z) {
-    return static_cast<Key>(static_cast<int>(Key::kA) + static_cast<int>(code - SDLK_a));
+/// SDL's video subsystem, for the software renderer; quit when it goes, if it started.
+class SdlVideo {
+ public:
+  SdlVideo() = default;
+  ~SdlVideo() {
+    if (started_) SDL_Quit();
   }
-  if (code >= SDLK_0 && code <= SDLK_9) {
-    return static_cast<Key>(static_cast<int>(Key::k0) + static_cast<int>(code - SDLK_0));
-  }
-  switch (code) {
-    case SDLK_SPACE:
-      return Key::kSpace;
-    case SDLK_RETURN:
-      return Key::kEnter;
-    case SDLK_KP_ENTER:
-      return Key::kEnter;
-    case SDLK_ESCAPE:
-      return Key::kEscape;
-    case SDLK_TAB:
-      return Key::kTab;
-    case SDLK_BACKSPACE:
-      return Key::kBackspace;
-    case SDLK_DELETE:
-      return Key::kDelete;
-    case SDLK_INSERT:
-      return Key::kInsert;
-    case SDLK_LEFT:
-      return Key::kLeft;
-    case SDLK_RIGHT:
-      return Key::kRight;
-    case SDLK_UP:
-      return Key::kUp;
-    case SDLK_DOWN:
-      return Key::kDown;
-    case SDLK_HOME:
-      return Key::kHome;
-    case SDLK_END:
-      return Key::kEnd;
-    case SDLK_PAGEUP:
-      return Key::kPageUp;
-    case SDLK_PAGEDOWN:
-      return Key::kPageDown;
-    case SDLK_MINUS:
-      return Key::kMinus;
-    case SDLK_KP_MINUS:
-      return Key::kMinus;
-    case SDLK_EQUALS:
-      return Key::kEquals;
-    case SDLK_PLUS:
-      return Key::kEquals;
-    case SDLK_KP_PLUS:
-      return Key::kEquals;
-    case SDLK_F1:
-      return Key::kF1;
-    default:
-      return Key::kUnknown;
-  }
-}
+  SdlVideo(const SdlVideo&) = delete;
+  SdlVideo& operator=(const SdlVideo&) = delete;
 
-/// One SDL event as the viewer's input, if it is one.
-std::optional<InputEvent> translate(const SDL_Event& event) {
-  switch (event.type) {
-    case SDL_QUIT:
-      return viewer::QuitEvent{};
-    case SDL_KEYDOWN:
-    case SDL_KEYUP: {
-      viewer::KeyEvent key;
-      key.key = key_from_sdl(event.key.keysym.sym);
-      key.down = event.type == SDL_KEYDOWN;
-      const Uint16 mod = event.key.keysym.mod;
-      key.modifiers = {(mod & KMOD_CTRL) != 0, (mod & KMOD_SHIFT) != 0, (mod & KMOD_ALT) != 0};
-      return key;
-    }
-    case SDL_TEXTINPUT:
-      return viewer::TextEvent{event.text.text};
-    case SDL_MOUSEMOTION:
-      return viewer::MouseMoveEvent{static_cast<float>(event.motion.x),
-                                    static_cast<float>(event.motion.y)};
-    case SDL_MOUSEBUTTONDOWN:
-    case SDL_MOUSEBUTTONUP: {
-      int button = -1;
-      if (event.button.button == SDL_BUTTON_LEFT) button = 0;
-      if (event.button.button == SDL_BUTTON_RIGHT) button = 1;
-      if (event.button.button == SDL_BUTTON_MIDDLE) button = 2;
-      if (button < 0) return std::nullopt;
-      return viewer::MouseButtonEvent{button, event.type == SDL_MOUSEBUTTONDOWN,
-                                      static_cast<float>(event.button.x),
-                                      static_cast<float>(event.button.y)};
-    }
-    case SDL_MOUSEWHEEL: {
-      float dy = static_cast<float>(event.wheel.y);
-      if (event.wheel.direction == SDL_MOUSEWHEEL_FLIPPED) dy = -dy;
-      return viewer::WheelEvent{dy};
-    }
-    default:
-      return std::nullopt;
+  /// False when SDL cannot start (SDL_GetError says why).
+  bool start() {
+    SDL_SetHint(SDL_HINT_FRAMEBUFFER_ACCELERATION, "0");
+    SDL_SetHint(SDL_HINT_RENDER_DRIVER, "software");
+    started_ = SDL_Init(SDL_INIT_VIDEO) == 0;
+    return started_;
   }
-}
 
-/// SDL's window, software renderer and streaming texture, released in reverse order.
-struct Window {
-  SDL_Window* window = nullptr;
-  SDL_Renderer* renderer = nullptr;
-  SDL_Texture* texture = nullptr;
-  ~Window() {
-    if (texture != nullptr) SDL_DestroyTexture(texture);
-    if (renderer != nullptr) SDL_DestroyRenderer(renderer);
-    if (window != nullptr) SDL_DestroyWindow(window);
-    SDL_Quit();
+ private:
+  bool started_ = false;
+};
+
+struct SdlDestroy {
+  void operator()(SDL_Window* window) const { SDL_DestroyWindow(window); }
+  void operator()(SDL_Renderer* renderer) const { SDL_DestroyRenderer(renderer); }
+  void operator()(SDL_Texture* texture) const { SDL_DestroyTexture(texture); }
+};
+
+/// SDL's window, software renderer and streaming texture, released in reverse order, then SDL.
+class SdlWindow {
+ public:
+  /// Opens a `width` x `height` window taking dropped files and text input; false when any
+  /// part fails (SDL_GetError says why).
+  bool open(int width, int height) {
+    if (!video_.start()) return false;
+    window_.reset(SDL_CreateWindow("tumble view", SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED,
+                                   width, height, SDL_WINDOW_SHOWN));
+    if (window_) renderer_.reset(SDL_CreateRenderer(window_.get(), -1, SDL_RENDERER_SOFTWARE));
+    if (renderer_) {
+      // RGBA bytes in memory, as the renderer hands them back.
+      texture_.reset(SDL_CreateTexture(renderer_.get(), SDL_PIXELFORMAT_ABGR8888,
+                                       SDL_TEXTUREACCESS_STREAMING, width, height));
+    }
+    if (!texture_) return false;
+    SDL_EventState(SDL_DROPFILE, SDL_ENABLE);
+    SDL_StartTextInput();
+    return true;
   }
+
+  /// Shows a frame of the window's size.
+  void show(const render::Image& image, int width) {
+    SDL_UpdateTexture(texture_.get(), nullptr, image.rgba.data(), 4 * width);
+    SDL_RenderCopy(renderer_.get(), texture_.get(), nullptr, nullptr);
+    SDL_RenderPresent(renderer_.get());
+  }
+
+ private:
+  SdlVideo video_;
+  std::unique_ptr<SDL_Window, SdlDestroy> window_;
+  std::unique_ptr<SDL_Renderer, SdlDestroy> renderer_;
+  std::unique_ptr<SDL_Texture, SdlDestroy> texture_;
 };
 
 /// Frame times, for the panel and --stats.
@@ -184,6 +138,173 @@ class FrameClock {
   std::vector<double> recent_;
 };
 
+/// What the checked options give the window: its size and the script's steps.
+struct WindowPlan {
+  int width = 1280;
+  int height = 720;
+  std::vector<viewer::ScriptStep> script;
+};
+
+/// Checks every option before anything opens. Throws engine::InputError.
+WindowPlan checked_options(const ViewOptions& options) {
+  WindowPlan plan;
+  if (options.size) std::tie(plan.width, plan.height) = parse_frame_size(*options.size);
+  if (options.script) plan.script = viewer::load_script(*options.script);
+  if (options.dt) positive_option(*options.dt, "--dt");
+  if (options.time_scale) positive_option(*options.time_scale, "--time-scale");
+  if (options.exit_after) positive_option(*options.exit_after, "--exit-after");
+  if (options.integrator) {
+    SceneDescription unused;
+    override_integrator(unused, *options.integrator);  // checks the name
+  }
+  std::error_code error;
+  if (!std::filesystem::is_directory(options.output_dir, error)) {
+    throw engine::InputError("--output-dir: '" + options.output_dir.string() +
+                             "' is not a directory");
+  }
+  return plan;
+}
+
+bool has_display() {
+  const char* display = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  return !((display == nullptr || *display == '\0') && (wayland == nullptr || *wayland == '\0'));
+}
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_between(Clock::time_point from, Clock::time_point to) {
+  return std::chrono::duration<double>(to - from).count();
+}
+
+/// The viewer in an open window: its renderer, ImGui layer, panels and script, the frame loop,
+/// and what it measured.
+class ViewerWindow {
+ public:
+  /// Sets up the renderer, ImGui and the viewer, and opens the scene the options name.
+  ViewerWindow(const ViewOptions& options, SdlWindow& window, WindowPlan plan);
+  /// Runs frames until a quit or --exit-after, then stops any recording.
+  void run();
+  /// --stats on `out`; the errors still shown on `err`.
+  void report(std::ostream& out, std::ostream& err) const;
+
+ private:
+  /// Feeds the window's events, then the script's steps due, to ImGui and the viewer.
+  void handle_input(double since_start);
+  /// Steps the simulation by `wall` seconds, draws the frame with the panels and shows it.
+  void draw_frame(double wall);
+
+  const ViewOptions& options_;
+  SdlWindow& window_;
+  const int width_;
+  const int height_;
+  render::Renderer renderer_;
+  render::ImGuiLayer layer_;
+  viewer::ImGuiInput imgui_input_;
+  viewer::Viewer viewer_;
+  viewer::Panels panels_;
+  viewer::ScriptPlayer player_;
+  Clock::time_point start_;
+  FrameClock frame_clock_;
+  render::Image window_image_;
+  render::Image scene_image_;
+  double played_wall_ = 0.0;  // wall time while playing, and simulated time it covered
+  double played_simulated_ = 0.0;
+};
+
+ViewerWindow::ViewerWindow(const ViewOptions& options, SdlWindow& window, WindowPlan plan)
+    : options_(options),
+      window_(window),
+      width_(plan.width),
+      height_(plan.height),
+      renderer_({width_, height_, 1}),
+      layer_(renderer_),
+      viewer_(renderer_, options.output_dir),
+      player_(std::move(plan.script)) {
+  ImGui::SetCurrentContext(layer_.context());
+  viewer::configure_imgui_keys(ImGui::GetIO());
+  const std::optional<std::filesystem::path> file =
+      options.file ? options.file : default_view_scene();
+  if (file) {
+    viewer_.open(*file, {options.integrator, options.dt});
+  } else {
+    viewer_.notify("no scene given and the demo was not found: open a file", true);
+  }
+  if (options.time_scale) viewer_.session().set_time_scale(*options.time_scale);
+  viewer_.session().set_paused(options.paused);
+}
+
+void ViewerWindow::run() {
+  start_ = Clock::now();
+  Clock::time_point last = start_;
+  for (;;) {
+    const Clock::time_point now = Clock::now();
+    const double wall = seconds_between(last, now);
+    const double since_start = seconds_between(start_, now);
+    last = now;
+    handle_input(since_start);
+    // A quit still draws this frame, so screenshots asked for with it are written.
+    const bool last_frame =
+        viewer_.quit_requested() || (options_.exit_after && since_start >= *options_.exit_after);
+    draw_frame(wall);
+    frame_clock_.add(seconds_between(now, Clock::now()));
+    if (last_frame) break;
+  }
+  if (viewer_.recording()) viewer_.stop_recording();
+}
+
+void ViewerWindow::handle_input(double since_start) {
+  std::vector<InputEvent> events = window_events();
+  for (viewer::ScriptStep& step : player_.due(since_start)) {
+    if (auto* input = std::get_if<InputEvent>(&step.action)) {
+      events.push_back(std::move(*input));
+    } else {
+      viewer_.request_screenshot(std::get<viewer::ScreenshotRequest>(step.action).path);
+    }
+  }
+  ImGuiIO& io = ImGui::GetIO();
+  for (const InputEvent& input : events) {
+    imgui_input_.feed(io, input);
+    viewer_.handle(input, io.WantCaptureKeyboard, io.WantCaptureMouse);
+  }
+}
+
+void ViewerWindow::draw_frame(double wall) {
+  const bool playing = !viewer_.session().paused();
+  const double simulated_before = viewer_.session().time();
+  viewer_.update(wall);
+  if (playing && viewer_.session().time() >= simulated_before) {
+    played_wall_ += wall;
+    played_simulated_ += viewer_.session().time() - simulated_before;
+  }
+  const viewer::FrameStats stats = frame_clock_.stats();
+  // The panels may start a recording while they are drawn: ask once, before the frame.
+  const render::DrawList list = viewer_.frame();
+  render::Image* const scene = viewer_.wants_scene_image() ? &scene_image_ : nullptr;
+  const render::ExtraPass pass = layer_.pass(
+      static_cast<float>(wall), [&] { panels_.draw(viewer_, stats, width_, height_); },
+      [&] { imgui_input_.end_frame(ImGui::GetIO()); }, scene);
+  renderer_.render(list, window_image_, pass);
+  viewer_.frame_drawn(scene, window_image_);
+  window_.show(window_image_, width_);
+}
+
+void ViewerWindow::report(std::ostream& out, std::ostream& err) const {
+  if (options_.stats) {
+    const double seconds = seconds_between(start_, Clock::now());
+    const auto [median, p95] = frame_clock_.percentiles();
+    out << "tumble view: " << frame_clock_.count() << " frames in " << seconds << " s ("
+        << static_cast<double>(frame_clock_.count()) / seconds << " frames/s); frame time median "
+        << median << " ms, 95th percentile " << p95 << " ms; real-time factor "
+        << (played_wall_ > 0.0 ? played_simulated_ / played_wall_ : 0.0) << " at time scale "
+        << viewer_.session().time_scale() << "\n";
+  }
+  // Errors still shown when the window closed go to the terminal too.
+  for (const viewer::Notice& notice : viewer_.notices()) {
+    if (notice.error) err << "tumble view: " << notice.text << "\n";
+  }
+}
+
 }  // namespace
 
 bool viewer_available() {
@@ -192,161 +313,26 @@ bool viewer_available() {
 
 int run_viewer_window(const ViewOptions& options, std::ostream& out, std::ostream& err) {
   // Options first: nothing opens for a mistake.
-  std::pair<int, int> size{1280, 720};
-  std::vector<viewer::ScriptStep> script;
+  WindowPlan plan;
   try {
-    if (options.size) size = parse_frame_size(*options.size);
-    if (options.script) script = viewer::load_script(*options.script);
-    if (options.dt) positive_option(*options.dt, "--dt");
-    if (options.time_scale) positive_option(*options.time_scale, "--time-scale");
-    if (options.exit_after) positive_option(*options.exit_after, "--exit-after");
-    if (options.integrator) {
-      SceneDescription unused;
-      override_integrator(unused, *options.integrator);  // checks the name
-    }
-    std::error_code error;
-    if (!std::filesystem::is_directory(options.output_dir, error)) {
-      throw engine::InputError("--output-dir: '" + options.output_dir.string() +
-                               "' is not a directory");
-    }
+    plan = checked_options(options);
   } catch (const engine::InputError& error) {
     err << "tumble view: " << error.what() << "\n";
     return 1;
   }
-  const char* display = std::getenv("DISPLAY");
-  const char* wayland = std::getenv("WAYLAND_DISPLAY");
-  if ((display == nullptr || *display == '\0') && (wayland == nullptr || *wayland == '\0')) {
+  if (!has_display()) {
     err << "tumble view: no display (DISPLAY is not set); run it in a desktop session or under "
            "xvfb-run\n";
     return 1;
   }
-
-  // The window.
-  SDL_SetHint(SDL_HINT_FRAMEBUFFER_ACCELERATION, "0");
-  SDL_SetHint(SDL_HINT_RENDER_DRIVER, "software");
-  if (SDL_Init(SDL_INIT_VIDEO) != 0) {
+  SdlWindow window;
+  if (!window.open(plan.width, plan.height)) {
     err << "tumble view: cannot open a window: " << SDL_GetError() << "\n";
     return 1;
   }
-  Window window;
-  const auto [width, height] = size;
-  window.window = SDL_CreateWindow("tumble view", SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED,
-                                   width, height, SDL_WINDOW_SHOWN);
-  if (window.window != nullptr) {
-    window.renderer = SDL_CreateRenderer(window.window, -1, SDL_RENDERER_SOFTWARE);
-  }
-  if (window.renderer != nullptr) {
-    // RGBA bytes in memory, as the renderer hands them back.
-    window.texture = SDL_CreateTexture(window.renderer, SDL_PIXELFORMAT_ABGR8888,
-                                       SDL_TEXTUREACCESS_STREAMING, width, height);
-  }
-  if (window.texture == nullptr) {
-    err << "tumble view: cannot open a window: " << SDL_GetError() << "\n";
-    return 1;
-  }
-  SDL_EventState(SDL_DROPFILE, SDL_ENABLE);
-  SDL_StartTextInput();
-
-  // Renderer, ImGui layer, viewer.
-  render::Renderer renderer({width, height, 1});
-  render::ImGuiLayer layer(renderer);
-  ImGui::SetCurrentContext(layer.context());
-  viewer::configure_imgui_keys(ImGui::GetIO());
-  viewer::ImGuiInput imgui_input;
-  viewer::Viewer viewer(renderer, options.output_dir);
-  viewer::Panels panels;
-  viewer::ScriptPlayer player(std::move(script));
-
-  const std::optional<std::filesystem::path> file =
-      options.file ? options.file : default_view_scene();
-  if (file) {
-    viewer.open(*file, {options.integrator, options.dt});
-  } else {
-    viewer.notify("no scene given and the demo was not found: open a file", true);
-  }
-  if (options.time_scale) viewer.session().set_time_scale(*options.time_scale);
-  viewer.session().set_paused(options.paused);
-
-  // The frame loop.
-  using Clock = std::chrono::steady_clock;
-  const Clock::time_point start = Clock::now();
-  Clock::time_point last = start;
-  FrameClock frame_clock;
-  render::Image window_image;
-  render::Image scene_image;
-  double played_wall = 0.0;  // wall time while playing, and simulated time it covered
-  double played_simulated = 0.0;
-  for (;;) {
-    const Clock::time_point now = Clock::now();
-    const double wall = std::chrono::duration<double>(now - last).count();
-    const double since_start = std::chrono::duration<double>(now - start).count();
-    last = now;
-
-    // Input: the window's events, then the script's steps that are due.
-    std::vector<InputEvent> events;
-    SDL_Event event;
-    while (SDL_PollEvent(&event) != 0) {
-      if (event.type == SDL_DROPFILE) {
-        events.push_back(viewer::DropEvent{event.drop.file});
-        SDL_free(event.drop.file);
-      } else if (auto input = translate(event)) {
-        events.push_back(*input);
-      }
-    }
-    for (viewer::ScriptStep& step : player.due(since_start)) {
-      if (auto* input = std::get_if<InputEvent>(&step.action)) {
-        events.push_back(std::move(*input));
-      } else {
-        viewer.request_screenshot(std::get<viewer::ScreenshotRequest>(step.action).path);
-      }
-    }
-    ImGuiIO& io = ImGui::GetIO();
-    for (const InputEvent& input : events) {
-      imgui_input.feed(io, input);
-      viewer.handle(input, io.WantCaptureKeyboard, io.WantCaptureMouse);
-    }
-    // A quit still draws this frame, so screenshots asked for with it are written.
-    const bool last_frame =
-        viewer.quit_requested() || (options.exit_after && since_start >= *options.exit_after);
-
-    // Step, draw, show.
-    const bool playing = !viewer.session().paused();
-    const double simulated_before = viewer.session().time();
-    viewer.update(wall);
-    if (playing && viewer.session().time() >= simulated_before) {
-      played_wall += wall;
-      played_simulated += viewer.session().time() - simulated_before;
-    }
-    const viewer::FrameStats stats = frame_clock.stats();
-    // The panels may start a recording while they are drawn: ask once, before the frame.
-    const render::DrawList list = viewer.frame();
-    render::Image* const scene = viewer.wants_scene_image() ? &scene_image : nullptr;
-    const render::ExtraPass pass = layer.pass(
-        static_cast<float>(wall), [&] { panels.draw(viewer, stats, width, height); },
-        [&] { imgui_input.end_frame(ImGui::GetIO()); }, scene);
-    renderer.render(list, window_image, pass);
-    viewer.frame_drawn(scene, window_image);
-    SDL_UpdateTexture(window.texture, nullptr, window_image.rgba.data(), 4 * width);
-    SDL_RenderCopy(window.renderer, window.texture, nullptr, nullptr);
-    SDL_RenderPresent(window.renderer);
-    frame_clock.add(std::chrono::duration<double>(Clock::now() - now).count());
-    if (last_frame) break;
-  }
-  if (viewer.recording()) viewer.stop_recording();
-
-  if (options.stats) {
-    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    const auto [median, p95] = frame_clock.percentiles();
-    out << "tumble view: " << frame_clock.count() << " frames in " << seconds << " s ("
-        << static_cast<double>(frame_clock.count()) / seconds << " frames/s); frame time median "
-        << median << " ms, 95th percentile " << p95 << " ms; real-time factor "
-        << (played_wall > 0.0 ? played_simulated / played_wall : 0.0) << " at time scale "
-        << viewer.session().time_scale() << "\n";
-  }
-  // Errors still shown when the window closed go to the terminal too.
-  for (const viewer::Notice& notice : viewer.notices()) {
-    if (notice.error) err << "tumble view: " << notice.text << "\n";
-  }
+  ViewerWindow viewer_window(options, window, std::move(plan));
+  viewer_window.run();
+  viewer_window.report(out, err);
   return 0;
 }
 
