@@ -151,10 +151,12 @@ const std::vector<IntegratorInfo>& integrator_catalog() {
       {K::kExplicitEuler, "explicit-euler", 1, false, false,
        "everything from the old state; energy grows, blows up on fast or extreme-ratio spins"},
       {K::kSemiImplicitEuler, "semi-implicit-euler", 1, false, false,
-       "the founding note made correct: kick v and L, drift x and turn q with the new w; "
+       "the naive scheme of tumble's founding note (engine/PHYSICS.md §2) made correct: kick v "
+       "and L, drift x and turn q with the new w; "
        "symplectic in translation, first order in rotation; world L exact"},
       {K::kSeedSemiImplicit, "seed-semi-implicit", 0, false, false,
-       "the note as written, no gyroscopic term: no flip, no precession; comparison only"},
+       "the founding note's update as written, no gyroscopic term (engine/PHYSICS.md §2): no "
+       "flip, no precession; comparison only"},
       {K::kImplicitEuler, "implicit-euler", 1, false, false,
        "backward Euler on the gyroscopic term (Newton), symplectic Euler in translation; "
        "stable, damps tumbling"},
