@@ -137,7 +137,9 @@ void write_case_section(std::ostream& out, const StabilityCase& c,
     out << "\n";
   }
   out << "\nError reference: " << reference << ".";
-  if (!c.only_integrators.empty()) out << " Skipped: every integrator but the cheap ones (" << c.skip_note << ").";
+  if (!c.only_integrators.empty()) {
+    out << " Skipped: every integrator but the cheap ones (" << c.skip_note << ").";
+  }
   if (c.note) out << " Note: " << *c.note << ".";
   out << "\n\n";
 }

@@ -21,7 +21,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <iostream>
 #include <memory>
 #include <ostream>
@@ -35,6 +34,7 @@
 
 #include "app/analysis/blow_up.hpp"
 #include "app/support/interrupt_guard.hpp"
+#include "app/video/image_compositing.hpp"
 #include "engine/input_error.hpp"
 #include "engine/integrators.hpp"
 #include "engine/reference_motion.hpp"
@@ -93,23 +93,6 @@ std::string run_title(const Run& run) {
 
 std::string blow_up_text(const engine::BlowUp& blow_up) {
   return "blew up at t = " + printf_number(blow_up.time, "%.4g") + " s";
-}
-
-/// Fills `image` (resized to width x height) with an opaque grey.
-void fill(render::Image& image, int width, int height, std::uint8_t grey) {
-  image.width = width;
-  image.height = height;
-  image.rgba.assign(4 * static_cast<std::size_t>(width) * static_cast<std::size_t>(height), grey);
-  for (std::size_t i = 3; i < image.rgba.size(); i += 4) image.rgba[i] = 255;
-}
-
-/// Copies `tile` into `frame` with its top-left corner at (x, y); the tile must fit.
-void paste(const render::Image& tile, render::Image& frame, int x, int y) {
-  const std::size_t row_bytes = 4 * static_cast<std::size_t>(tile.width);
-  for (int row = 0; row < tile.height; ++row) {
-    std::memcpy(frame.rgba.data() + 4 * (static_cast<std::size_t>(y + row) * frame.width + x),
-                tile.rgba.data() + static_cast<std::size_t>(row) * row_bytes, row_bytes);
-  }
 }
 
 /// Makes the FrameBuilder's overlay panel fit a tile: the run's integrator and dt as its
@@ -234,7 +217,7 @@ void start_jobs(const CompareOptions& options, const CompiledScene& compiled,
 void draw_grid_frame(const Comparison& comparison, render::Renderer& renderer,
                      render::Image& tile, render::Image& frame) {
   const GridLayout& grid = comparison.grid;
-  fill(frame, comparison.frame_settings.width, comparison.frame_settings.height, kGapGrey);
+  fill_grey(frame, comparison.frame_settings.width, comparison.frame_settings.height, kGapGrey);
   render::Camera camera;
   for (std::size_t i = 0; i < comparison.runs.size(); ++i) {
     render::DrawList list = comparison.runs[i].job->build();
@@ -244,7 +227,8 @@ void draw_grid_frame(const Comparison& comparison, render::Renderer& renderer,
     renderer.render(list, tile);
     const auto column = static_cast<int>(i % static_cast<std::size_t>(grid.columns));
     const auto row = static_cast<int>(i / static_cast<std::size_t>(grid.columns));
-    paste(tile, frame, grid.left + column * grid.tile_width, grid.top + row * grid.tile_height);
+    paste_tile(tile, frame, grid.left + column * grid.tile_width,
+               grid.top + row * grid.tile_height);
   }
 }
 
