@@ -116,11 +116,14 @@ const char* kRules =
 void write_case_section(std::ostream& out, const StabilityCase& c,
                         const std::vector<engine::IntegratorInfo>& integrators,
                         const std::vector<StabilityRun>& runs, std::size_t& index) {
+  // The case and what its columns show.
   out << "## Case `" << c.name << "`\n\n" << c.description << ". Duration "
       << printf_number(c.duration) << " s";
   if (c.rate > 0.0) out << "; columns are " << c.rate_label << " (rate " << printf_number(c.rate)
                         << " 1/s)";
   else out << "; columns are dt in s";
+
+  // The matrix: one row per integrator, one column per dt.
   out << ".\n\n| integrator |";
   for (const double dt : c.dts) out << " " << column_label(c, dt) << " |";
   out << "\n|---|";
@@ -136,6 +139,8 @@ void write_case_section(std::ostream& out, const StabilityCase& c,
     }
     out << "\n";
   }
+
+  // The notes under it.
   out << "\nError reference: " << reference << ".";
   if (!c.only_integrators.empty()) {
     out << " Skipped: every integrator but the cheap ones (" << c.skip_note << ").";

@@ -85,6 +85,7 @@ void clear_inapplicable(InvariantChanges& ch) {
 /// in `run.changes` and timing the loop.
 void step_watching_invariants(const StabilityCase& c, engine::Simulation& simulation,
                               StabilityRun& run) {
+  // The invariants that apply, their start values and scales.
   InvariantChanges& ch = run.changes;
   for (const engine::BodyModel& body : c.bodies) {
     ch.energy_applies = ch.energy_applies || body.conservative();
@@ -97,6 +98,8 @@ void step_watching_invariants(const StabilityCase& c, engine::Simulation& simula
   ch.energy_late_max = ch.momentum_late_max = -std::numeric_limits<double>::infinity();
   ch.energy_late_min = ch.momentum_late_min = std::numeric_limits<double>::infinity();
   const double momentum_scale = start.momentum != 0.0 ? start.momentum : 1.0;
+
+  // Step, keeping the signed extremes.
   const auto begin = std::chrono::steady_clock::now();
   while (simulation.step()) {
     const engine::Invariants now = invariants(simulation);

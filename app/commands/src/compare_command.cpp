@@ -155,6 +155,7 @@ struct Comparison {
 /// Checks the integrators and the layout and plans every run (scene and options checked), each
 /// drawing at its tile's size in a grid and with no panel of its own in the overlay.
 Comparison plan_comparison(const CompareOptions& options) {
+  // The integrators, with a colour each in the overlay.
   Comparison comparison;
   const std::vector<std::string> integrators = comparison_integrators(options.integrators);
   comparison.layout = parse_compare_layout(options.layout);
@@ -164,12 +165,16 @@ Comparison plan_comparison(const CompareOptions& options) {
                      " integrators have a colour of their own, got " +
                      std::to_string(integrators.size()));
   }
+
+  // Every run planned as `tumble render` would, the frame taken from the first.
   for (const std::string& integrator : integrators) {
     comparison.runs.push_back({integrator, plan_render(run_options(options, integrator)), nullptr});
   }
   comparison.frame_settings = comparison.runs.front().plan.settings;
   comparison.range = comparison.runs.front().plan.frames;
   const RenderSettings& frame = comparison.frame_settings;
+
+  // The tiles, and what each run draws.
   if (grid) comparison.grid = grid_layout(comparison.runs.size(), frame.width, frame.height);
   for (Run& run : comparison.runs) {
     run.plan.settings.show.overlay = true;  // the labels are the point of a comparison
