@@ -21,7 +21,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <iostream>
 #include <memory>
 #include <ostream>
@@ -35,6 +34,7 @@
 
 #include "app/analysis/blow_up.hpp"
 #include "app/support/interrupt_guard.hpp"
+#include "app/video/image_compositing.hpp"
 #include "engine/input_error.hpp"
 #include "engine/integrators.hpp"
 #include "engine/reference_motion.hpp"
@@ -95,23 +95,6 @@ std::string blow_up_text(const engine::BlowUp& blow_up) {
   return "blew up at t = " + printf_number(blow_up.time, "%.4g") + " s";
 }
 
-/// Fills `image` (resized to width x height) with an opaque grey.
-void fill(render::Image& image, int width, int height, std::uint8_t grey) {
-  image.width = width;
-  image.height = height;
-  image.rgba.assign(4 * static_cast<std::size_t>(width) * static_cast<std::size_t>(height), grey);
-  for (std::size_t i = 3; i < image.rgba.size(); i += 4) image.rgba[i] = 255;
-}
-
-/// Copies `tile` into `frame` with its top-left corner at (x, y); the tile must fit.
-void paste(const render::Image& tile, render::Image& frame, int x, int y) {
-  const std::size_t row_bytes = 4 * static_cast<std::size_t>(tile.width);
-  for (int row = 0; row < tile.height; ++row) {
-    std::memcpy(frame.rgba.data() + 4 * (static_cast<std::size_t>(y + row) * frame.width + x),
-                tile.rgba.data() + static_cast<std::size_t>(row) * row_bytes, row_bytes);
-  }
-}
-
 /// Makes the FrameBuilder's overlay panel fit a tile: the run's integrator and dt as its
 /// title, the time (and the blow-up) as its lines, and its drift plots scaled to the tile.
 void fit_panel(render::DrawList& list, const Run& run, const GridLayout& grid) {
@@ -159,108 +142,128 @@ render::DrawList overlay_frame(const std::vector<Run>& runs, const Run& referenc
   return frame;
 }
 
-/// Runs the comparison into its output; returns the exit status. Throws on errors.
-int compare_scene(const CompareOptions& options, const InterruptGuard& guard, std::ostream& out,
-                  std::ostream& err, bool progress) {
-  const auto start = std::chrono::steady_clock::now();
+/// The runs of a comparison and how they share the frame.
+struct Comparison {
+  CompareLayout layout = CompareLayout::kGrid;
+  std::vector<Run> runs;
+  std::optional<Run> reference;   ///< the overlay's grey ghost
+  RenderSettings frame_settings;  ///< the whole frame's
+  FrameRange range;
+  GridLayout grid;  ///< where the grid's tiles go
+};
 
-  // Integrators, layout, scene and options; then the output. All fail before any mesh is read.
+/// Checks the integrators and the layout and plans every run (scene and options checked), each
+/// drawing at its tile's size in a grid and with no panel of its own in the overlay.
+Comparison plan_comparison(const CompareOptions& options) {
+  // The integrators, with a colour each in the overlay.
+  Comparison comparison;
   const std::vector<std::string> integrators = comparison_integrators(options.integrators);
-  const CompareLayout layout = parse_compare_layout(options.layout);
-  if (layout == CompareLayout::kOverlay && integrators.size() > kRunPalette.size()) {
+  comparison.layout = parse_compare_layout(options.layout);
+  const bool grid = comparison.layout == CompareLayout::kGrid;
+  if (!grid && integrators.size() > kRunPalette.size()) {
     throw InputError("--layout overlay: at most " + std::to_string(kRunPalette.size()) +
                      " integrators have a colour of their own, got " +
                      std::to_string(integrators.size()));
   }
-  std::vector<Run> runs;
+
+  // Every run planned as `tumble render` would, the frame taken from the first.
   for (const std::string& integrator : integrators) {
-    runs.push_back({integrator, plan_render(run_options(options, integrator)), nullptr});
+    comparison.runs.push_back({integrator, plan_render(run_options(options, integrator)), nullptr});
   }
-  const RenderSettings frame_settings = runs.front().plan.settings;
-  const FrameRange range = runs.front().plan.frames;
-  GridLayout grid;
-  if (layout == CompareLayout::kGrid) {
-    grid = grid_layout(runs.size(), frame_settings.width, frame_settings.height);
-  }
-  for (Run& run : runs) {
+  comparison.frame_settings = comparison.runs.front().plan.settings;
+  comparison.range = comparison.runs.front().plan.frames;
+  const RenderSettings& frame = comparison.frame_settings;
+
+  // The tiles, and what each run draws.
+  if (grid) comparison.grid = grid_layout(comparison.runs.size(), frame.width, frame.height);
+  for (Run& run : comparison.runs) {
     run.plan.settings.show.overlay = true;  // the labels are the point of a comparison
-    if (layout == CompareLayout::kGrid) {
-      run.plan.settings.width = grid.tile_width;
-      run.plan.settings.height = grid.tile_height;
+    if (grid) {
+      run.plan.settings.width = comparison.grid.tile_width;
+      run.plan.settings.height = comparison.grid.tile_height;
     } else {
       run.plan.settings.show.overlay = false;  // one legend instead
       run.plan.settings.show.inertia_ellipsoid = false;
     }
   }
-  std::unique_ptr<render::ImageSink> sink =
-      open_render_output(options, frame_settings, range.first);
+  return comparison;
+}
 
-  // One renderer (tile- or frame-sized) shared by every run's job.
-  const int renderer_width = layout == CompareLayout::kGrid ? grid.tile_width : frame_settings.width;
-  const int renderer_height =
-      layout == CompareLayout::kGrid ? grid.tile_height : frame_settings.height;
-  render::Renderer renderer(
-      render::RendererOptions{renderer_width, renderer_height, frame_settings.antialiasing});
-  // The scene is compiled (its meshes read) once; the runs differ only in their settings.
-  const CompiledScene compiled = compile_scene(runs.front().plan.scene, /*keep_geometry=*/true);
-  for (Run& run : runs) run.job = std::make_unique<RenderJob>(run.plan, compiled, renderer);
+/// The renderer every run's job shares: tile-sized in a grid, frame-sized in the overlay.
+render::RendererOptions shared_renderer_options(const Comparison& comparison) {
+  const bool grid = comparison.layout == CompareLayout::kGrid;
+  const RenderSettings& frame = comparison.frame_settings;
+  return render::RendererOptions{grid ? comparison.grid.tile_width : frame.width,
+                                 grid ? comparison.grid.tile_height : frame.height,
+                                 frame.antialiasing};
+}
 
-  // The overlay's reference (engine::ReferenceMotion): exact or dopri, run as a job.
-  std::optional<Run> reference;
-  if (layout == CompareLayout::kOverlay) {
-    const engine::Simulation& first = runs.front().job->simulation();
-    const engine::ReferenceMotion motion(first.bodies(), first.initial_states());
-    reference.emplace();
-    reference->integrator = engine::integrator_info(motion.integrator()).name;
-    reference->plan = plan_render(run_options(options, reference->integrator));
-    reference->plan.settings = runs.front().plan.settings;
-    reference->plan.scene.tolerance = motion.tolerance();
-    reference->job = std::make_unique<RenderJob>(reference->plan, compiled, renderer);
+/// Starts every run's job on the compiled scene, and in the overlay the reference's
+/// (engine::ReferenceMotion: exact or dopri, run as a job).
+void start_jobs(const CompareOptions& options, const CompiledScene& compiled,
+                render::Renderer& renderer, Comparison& comparison) {
+  for (Run& run : comparison.runs) {
+    run.job = std::make_unique<RenderJob>(run.plan, compiled, renderer);
   }
+  if (comparison.layout != CompareLayout::kOverlay) return;
+  const Run& first = comparison.runs.front();
+  const engine::ReferenceMotion motion(first.job->simulation().bodies(),
+                                       first.job->simulation().initial_states());
+  Run& reference = comparison.reference.emplace();
+  reference.integrator = engine::integrator_info(motion.integrator()).name;
+  reference.plan = plan_render(run_options(options, reference.integrator));
+  reference.plan.settings = first.plan.settings;
+  reference.plan.scene.tolerance = motion.tolerance();
+  reference.job = std::make_unique<RenderJob>(reference.plan, compiled, renderer);
+}
 
-  // Every frame time from 0 is visited by every run; frames in the range are drawn.
+/// The grid frame: each run's panel drawn with the first run's camera and copied into its
+/// tile, over the gap grey.
+void draw_grid_frame(const Comparison& comparison, render::Renderer& renderer,
+                     render::Image& tile, render::Image& frame) {
+  const GridLayout& grid = comparison.grid;
+  fill_grey(frame, comparison.frame_settings.width, comparison.frame_settings.height, kGapGrey);
+  render::Camera camera;
+  for (std::size_t i = 0; i < comparison.runs.size(); ++i) {
+    render::DrawList list = comparison.runs[i].job->build();
+    if (i == 0) camera = list.camera;
+    list.camera = camera;
+    fit_panel(list, comparison.runs[i], grid);
+    renderer.render(list, tile);
+    const auto column = static_cast<int>(i % static_cast<std::size_t>(grid.columns));
+    const auto row = static_cast<int>(i / static_cast<std::size_t>(grid.columns));
+    paste_tile(tile, frame, grid.left + column * grid.tile_width,
+               grid.top + row * grid.tile_height);
+  }
+}
+
+/// Every frame time from 0 is visited by every run; frames in the range are drawn into `sink`.
+/// Stops early when interrupted.
+void draw_frames(Comparison& comparison, render::Renderer& renderer, render::ImageSink& sink,
+                 const InterruptGuard& guard, std::ostream& err, bool progress) {
+  const FrameRange& range = comparison.range;
   ProgressBar bar(err, range.end - range.first, "frames", progress);
   render::Image frame;
   render::Image tile;
   for (std::size_t index = 0; index < range.end; ++index) {
     if (guard.interrupted()) break;
-    for (Run& run : runs) run.job->advance_to(index);
-    if (reference) reference->job->advance_to(index);
+    for (Run& run : comparison.runs) run.job->advance_to(index);
+    if (comparison.reference) comparison.reference->job->advance_to(index);
     if (index < range.first) continue;
-    if (layout == CompareLayout::kGrid) {
-      // Each panel with the first run's camera, copied into its tile.
-      fill(frame, frame_settings.width, frame_settings.height, kGapGrey);
-      render::Camera camera;
-      for (std::size_t i = 0; i < runs.size(); ++i) {
-        render::DrawList list = runs[i].job->build();
-        if (i == 0) camera = list.camera;
-        list.camera = camera;
-        fit_panel(list, runs[i], grid);
-        renderer.render(list, tile);
-        const auto column = static_cast<int>(i % static_cast<std::size_t>(grid.columns));
-        const auto row = static_cast<int>(i / static_cast<std::size_t>(grid.columns));
-        paste(tile, frame, grid.left + column * grid.tile_width,
-              grid.top + row * grid.tile_height);
-      }
+    if (comparison.layout == CompareLayout::kGrid) {
+      draw_grid_frame(comparison, renderer, tile, frame);
     } else {
-      renderer.render(overlay_frame(runs, *reference), frame);
+      renderer.render(overlay_frame(comparison.runs, *comparison.reference), frame);
     }
-    sink->write(frame);
+    sink.write(frame);
     bar.update(index + 1 - range.first);
   }
   bar.clear();
-  if (guard.interrupted()) {
-    sink.reset();  // removes the temporary
-    err << "tumble compare: interrupted by " << guard.signal_name() << "; nothing written to '"
-        << options.output.string() << "'\n";
-    return kExitInterrupted;
-  }
-  sink->finish();
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
-  // Blow-ups, the overlay's reference's included: the output is complete (those runs hold
-  // their last good state); one line each.
+/// One warning line per blown-up run, the overlay's reference included (the output is
+/// complete: those runs hold their last good state); kExitBlowUp when there was one, else 0.
+int warn_blow_ups(const Comparison& comparison, std::ostream& err) {
   int status = 0;
   const auto warn = [&](const Run& run, const std::string& who) {
     const engine::Simulation& simulation = run.job->simulation();
@@ -270,18 +273,61 @@ int compare_scene(const CompareOptions& options, const InterruptGuard& guard, st
         << printf_number(simulation.time(), "%.9g") << " s)\n";
     status = kExitBlowUp;
   };
-  for (const Run& run : runs) warn(run, run.integrator);
-  if (reference) warn(*reference, "the reference (" + reference->integrator + ")");
-  if (!options.quiet) {
-    const std::size_t frames = sink->frames();
-    out << "tumble compare: " << runs.size() << " integrators, " << frames
-        << (frames == 1 ? " frame" : " frames") << " ("
-        << (layout == CompareLayout::kGrid
-                ? "grid " + std::to_string(grid.columns) + "x" + std::to_string(grid.rows)
-                : "overlay on " + reference->integrator)
-        << ") written to '" << options.output.string() << "' in " << printf_number(seconds, "%.2f")
-        << " s\n";
+  for (const Run& run : comparison.runs) warn(run, run.integrator);
+  if (comparison.reference) {
+    warn(*comparison.reference, "the reference (" + comparison.reference->integrator + ")");
   }
+  return status;
+}
+
+void print_summary(const CompareOptions& options, const Comparison& comparison,
+                   std::size_t frames, double seconds, std::ostream& out) {
+  const GridLayout& grid = comparison.grid;
+  out << "tumble compare: " << comparison.runs.size() << " integrators, " << frames
+      << (frames == 1 ? " frame" : " frames") << " ("
+      << (comparison.layout == CompareLayout::kGrid
+              ? "grid " + std::to_string(grid.columns) + "x" + std::to_string(grid.rows)
+              : "overlay on " + comparison.reference->integrator)
+      << ") written to '" << options.output.string() << "' in " << printf_number(seconds, "%.2f")
+      << " s\n";
+}
+
+/// Says that the signal `guard` caught stopped the command with nothing written.
+int report_interrupted(const CompareOptions& options, const InterruptGuard& guard,
+                       std::ostream& err) {
+  err << "tumble compare: interrupted by " << guard.signal_name() << "; nothing written to '"
+      << options.output.string() << "'\n";
+  return kExitInterrupted;
+}
+
+/// Runs the comparison into its output; returns the exit status. Throws on errors.
+int compare_scene(const CompareOptions& options, const InterruptGuard& guard, std::ostream& out,
+                  std::ostream& err, bool progress) {
+  const auto start = std::chrono::steady_clock::now();
+
+  // Integrators, layout, scene and options; then the output. All fail before any mesh is read.
+  Comparison comparison = plan_comparison(options);
+  std::unique_ptr<render::ImageSink> sink =
+      open_render_output(options, comparison.frame_settings, comparison.range.first);
+
+  // One renderer for every job; the scene is compiled (its meshes read) once, as the runs
+  // differ only in their settings.
+  render::Renderer renderer(shared_renderer_options(comparison));
+  const CompiledScene compiled =
+      compile_scene(comparison.runs.front().plan.scene, /*keep_geometry=*/true);
+  start_jobs(options, compiled, renderer, comparison);
+
+  draw_frames(comparison, renderer, *sink, guard, err, progress);
+  if (guard.interrupted()) {
+    sink.reset();  // removes the temporary
+    return report_interrupted(options, guard, err);
+  }
+  sink->finish();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  const int status = warn_blow_ups(comparison, err);
+  if (!options.quiet) print_summary(options, comparison, sink->frames(), seconds, out);
   return status;
 }
 
@@ -370,10 +416,7 @@ int run_compare(const CompareOptions& options, std::ostream& out, std::ostream& 
   // An interruption under way wins over the error it caused (ffmpeg shares the terminal's
   // SIGINT and may fail first).
   const auto interrupted = [&] {
-    if (!guard.interrupted()) return -1;
-    err << "tumble compare: interrupted by " << guard.signal_name() << "; nothing written to '"
-        << options.output.string() << "'\n";
-    return kExitInterrupted;
+    return guard.interrupted() ? report_interrupted(options, guard, err) : -1;
   };
   return run_guarded(
       "compare", err, [&] { return compare_scene(options, guard, out, err, progress); },

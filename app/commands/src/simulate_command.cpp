@@ -23,8 +23,6 @@ namespace {
 
 using engine::InputError;
 
-
-
 /// Applies the command-line options on top of the scene and checks them all.
 void apply_options(const SimulateOptions& options, SceneDescription& scene) {
   if (options.integrator) override_integrator(scene, *options.integrator);
@@ -112,42 +110,27 @@ int list_integrators(bool json, std::ostream& out) {
   return 0;
 }
 
-/// Runs the scene, filling `summary`; returns the exit status.
-int simulate(const SimulateOptions& options, RunSummary& summary, std::ostream& err) {
-  // Scene and options: everything is checked before any output is created.
-  SceneDescription scene = load_scene(options.scene);
-  apply_options(options, scene);
-
-  // The CSV's temporary file is created now, so an unwritable path fails before the run.
-  std::optional<TrajectoryCsv> csv;
-  if (options.csv) csv.emplace(*options.csv);
-
-  // Compile (import meshes) and build the simulation.
+/// The compiled scene as a simulation, with --blowup-factor over the scene's. Throws
+/// engine::InputError naming the scene file when the integrator cannot handle a body.
+engine::Simulation build_simulation(const SimulateOptions& options,
+                                    const SceneDescription& scene) {
   CompiledScene compiled = compile_scene(scene);
   engine::SimulationSettings settings = compiled.settings;
   if (options.blowup_factor) settings.blowup_factor = *options.blowup_factor;
-  std::optional<engine::Simulation> built;
   try {
-    built.emplace(std::move(compiled.bodies), std::move(compiled.initial), settings);
+    return engine::Simulation(std::move(compiled.bodies), std::move(compiled.initial), settings);
   } catch (const InputError& error) {  // e.g. the exact integrator on a body with torques
     throw InputError(scene.file.string() + ": " + error.what());
   }
-  engine::Simulation& simulation = *built;
+}
+
+/// Steps to the end or the blow-up, watching each body's invariants every step and writing
+/// every `every`th step (and the first and the last) to `csv` when there is one. Returns the
+/// time spent in the steps alone.
+std::chrono::steady_clock::duration run_and_write(engine::Simulation& simulation,
+                                                  std::vector<InvariantMonitor>& monitors,
+                                                  TrajectoryCsv* csv, std::size_t every) {
   const auto& bodies = simulation.bodies();
-
-  summary.scene = scene.name;
-  summary.file = scene.file;
-  summary.integrator = scene.integrator;
-  summary.dt = settings.dt;
-  summary.duration = settings.duration;
-  summary.total_steps = simulation.total_steps();
-  std::vector<InvariantMonitor> monitors;
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    monitors.emplace_back(engine::invariants(bodies[i], simulation.initial_states()[i]));
-  }
-
-  // Step, timing the steps only; watch the invariants every step, write every Nth.
-  const auto every = static_cast<std::size_t>(options.every);
   if (csv) csv->write_rows(simulation.time(), bodies, simulation.states());
   std::size_t last_written = 0;
   std::chrono::steady_clock::duration stepping{};
@@ -168,16 +151,14 @@ int simulate(const SimulateOptions& options, RunSummary& summary, std::ostream& 
   if (csv && simulation.steps() != last_written && simulation.steps() > 0) {
     csv->write_rows(simulation.time(), bodies, simulation.states());
   }
-  if (csv) {
-    csv->commit();
-    summary.csv = csv->path();
-    summary.csv_rows = csv->rows();
-  }
+  return stepping;
+}
 
-  // Summary.
-  summary.steps = simulation.steps();
-  summary.time = simulation.time();
-  summary.wall_seconds = std::chrono::duration<double>(stepping).count();
+/// Each body's drifts and its orientation error against the exact torque-free solution.
+std::vector<BodySummary> body_summaries(const engine::Simulation& simulation,
+                                        const std::vector<InvariantMonitor>& monitors) {
+  const auto& bodies = simulation.bodies();
+  std::vector<BodySummary> summaries;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     BodySummary body;
     body.name = bodies[i].name;
@@ -189,8 +170,48 @@ int simulate(const SimulateOptions& options, RunSummary& summary, std::ostream& 
     body.momentum_drift_final = monitors[i].momentum_final;
     body.orientation_error = exact_orientation_error(bodies[i], simulation.initial_states()[i],
                                                      simulation.states()[i], simulation.time());
-    summary.bodies.push_back(body);
+    summaries.push_back(body);
   }
+  return summaries;
+}
+
+/// Runs the scene, filling `summary`; returns the exit status.
+int simulate(const SimulateOptions& options, RunSummary& summary, std::ostream& err) {
+  // Scene and options: everything is checked before any output is created.
+  SceneDescription scene = load_scene(options.scene);
+  apply_options(options, scene);
+
+  // The CSV's temporary file is created now, so an unwritable path fails before the run.
+  std::optional<TrajectoryCsv> csv;
+  if (options.csv) csv.emplace(*options.csv);
+
+  // Compile (import meshes), build the simulation and start watching its invariants.
+  engine::Simulation simulation = build_simulation(options, scene);
+  summary.scene = scene.name;
+  summary.file = scene.file;
+  summary.integrator = scene.integrator;
+  summary.dt = simulation.settings().dt;
+  summary.duration = simulation.settings().duration;
+  summary.total_steps = simulation.total_steps();
+  std::vector<InvariantMonitor> monitors;
+  for (std::size_t i = 0; i < simulation.bodies().size(); ++i) {
+    monitors.emplace_back(
+        engine::invariants(simulation.bodies()[i], simulation.initial_states()[i]));
+  }
+
+  const auto stepping = run_and_write(simulation, monitors, csv ? &*csv : nullptr,
+                                      static_cast<std::size_t>(options.every));
+  if (csv) {
+    csv->commit();
+    summary.csv = csv->path();
+    summary.csv_rows = csv->rows();
+  }
+
+  // Summary.
+  summary.steps = simulation.steps();
+  summary.time = simulation.time();
+  summary.wall_seconds = std::chrono::duration<double>(stepping).count();
+  summary.bodies = body_summaries(simulation, monitors);
   if (simulation.blow_up()) {
     std::string message = "blow-up: " + describe_blow_up(simulation);
     if (csv) {

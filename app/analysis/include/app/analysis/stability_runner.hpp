@@ -1,0 +1,57 @@
+#pragma once
+/// @file One run of `tumble stability`: a case under one integrator at one dt, stepped through
+/// engine::Simulation (which detects blow-ups) while the signed changes of the invariants that
+/// apply are kept (energy of conservative bodies, |L| of torque-free ones, summed over bodies),
+/// then classified and measured at the end against the case's reference.
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/analysis/stability_classes.hpp"
+#include "app/analysis/stability_suite.hpp"
+#include "engine/integrators.hpp"
+#include "engine/rigid_body.hpp"
+
+namespace tumble::app {
+
+/// The reference states at the end of a case, and what they come from ("none": no states).
+struct StabilityReference {
+  std::string kind = "none";
+  std::vector<engine::BodyState> states;
+};
+
+/// The case's engine::ReferenceMotion at its end (the exact torque-free solution when every
+/// body is torque-free, else dopri at engine::kReferenceTolerance, with a hundred output
+/// steps); "none" when that run fails.
+StabilityReference stability_reference(const StabilityCase& c);
+
+/// What one run of the sweep found.
+struct StabilityRun {
+  std::string case_name;
+  std::string integrator;
+  double dt = 0.0;
+  double rate_dt = 0.0;  ///< the case's rate x dt, or dt when it has no rate
+  double duration = 0.0;
+  std::size_t steps = 0;
+  std::size_t total_steps = 0;
+  StabilityOutcome outcome = StabilityOutcome::kSkipped;
+  InvariantChanges changes;  ///< all zero for the invariants that do not apply
+  std::optional<double> blowup_time;
+  std::string blowup_reason;
+  std::optional<double> orientation_error;  ///< rad, largest over the bodies
+  std::optional<double> position_error;     ///< m, largest over the bodies
+  std::string reference;  ///< StabilityReference::kind
+  double wall_seconds = 0.0;  ///< the stepping loop
+  std::string note;  ///< why a skipped run was not made
+};
+
+/// Runs case `c` under `info` at step `dt`. Skipped (with the reason in `note`) when the case
+/// names other integrators or the simulation cannot be built (the exact solution on a forced
+/// case); the errors at the end are measured only when the run did not blow up and `reference`
+/// has states.
+StabilityRun run_stability_case(const StabilityCase& c, const engine::IntegratorInfo& info,
+                                double dt, const StabilityReference& reference);
+
+}  // namespace tumble::app
