@@ -22,8 +22,8 @@
 #endif
 
 #include "engine/input_error.hpp"
-#include "vertex_welding.hpp"
 #include "split_in_two.hpp"
+#include "vertex_welding.hpp"
 
 namespace tumble::engine::detail {
 namespace {

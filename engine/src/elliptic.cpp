@@ -32,9 +32,9 @@ constexpr double kNearOne = 1e-4;
 // the series sum_k (-e)^k / (2k + 1) for small |e| (the common case inside R_J).
 double rc_one_plus(double e) {
   if (std::abs(e) < 1e-3) {
-    return 1.0 +
-           e * (-1.0 / 3.0 +
-                e * (1.0 / 5.0 + e * (-1.0 / 7.0 + e * (1.0 / 9.0 + e * (-1.0 / 11.0 + e / 13.0)))));
+    return 1.0 + e * (-1.0 / 3.0 +
+                      e * (1.0 / 5.0 +
+                           e * (-1.0 / 7.0 + e * (1.0 / 9.0 + e * (-1.0 / 11.0 + e / 13.0)))));
   }
   if (e > 0.0) {
     const double s = std::sqrt(e);
@@ -145,7 +145,9 @@ JacobiElliptic jacobi_elliptic(double u, double m, double m1) {
   return jacobi_elliptic(u, elliptic_parameter(m, m1));
 }
 
-JacobiElliptic jacobi_elliptic(double u, double m) { return jacobi_elliptic(u, m, 1.0 - m); }
+JacobiElliptic jacobi_elliptic(double u, double m) {
+  return jacobi_elliptic(u, m, 1.0 - m);
+}
 
 double carlson_rc(double x, double y) {
   // Duplication (Carlson 1995, algorithm for R_C), y > 0.
@@ -162,9 +164,10 @@ double carlson_rc(double x, double y) {
   }
   // s = (y_0 - A_0) / (4^n A_n), written with the current iterates: y_n - A_n = 4^-n (y_0 - A_0).
   const double t = (y - a) / a;
-  return (1.0 + t * t * (3.0 / 10.0 + t * (1.0 / 7.0 + t * (3.0 / 8.0 + t * (9.0 / 22.0 +
-                                                                            t * (159.0 / 208.0 +
-                                                                                 t * 9.0 / 8.0)))))) /
+  return (1.0 + t * t *
+                    (3.0 / 10.0 +
+                     t * (1.0 / 7.0 + t * (3.0 / 8.0 + t * (9.0 / 22.0 + t * (159.0 / 208.0 +
+                                                                              t * 9.0 / 8.0)))))) /
          std::sqrt(a);
 }
 
@@ -250,7 +253,9 @@ double elliptic_k_complement(double m1) {
   return std::numbers::pi / (a + b);
 }
 
-double elliptic_k(double m) { return elliptic_k_complement(1.0 - m); }
+double elliptic_k(double m) {
+  return elliptic_k_complement(1.0 - m);
+}
 
 double elliptic_f(double phi, [[maybe_unused]] double m, double m1) {
   double reduced = 0.0;
@@ -262,14 +267,18 @@ double elliptic_f(double phi, [[maybe_unused]] double m, double m1) {
   return j == 0.0 ? f : 2.0 * j * elliptic_k_complement(m1) + f;
 }
 
-double elliptic_f(double phi, double m) { return elliptic_f(phi, m, 1.0 - m); }
+double elliptic_f(double phi, double m) {
+  return elliptic_f(phi, m, 1.0 - m);
+}
 
 double elliptic_pi_complete(double n, [[maybe_unused]] double m, double m1) {
   if (m1 <= 0.0) return std::numeric_limits<double>::infinity();
   return elliptic_k_complement(m1) + n / 3.0 * carlson_rj(0.0, m1, 1.0, 1.0 - n);
 }
 
-double elliptic_pi_complete(double n, double m) { return elliptic_pi_complete(n, m, 1.0 - m); }
+double elliptic_pi_complete(double n, double m) {
+  return elliptic_pi_complete(n, m, 1.0 - m);
+}
 
 double elliptic_pi(double n, double phi, double m, double m1) {
   double reduced = 0.0;
@@ -284,6 +293,8 @@ double elliptic_pi(double n, double phi, double m, double m1) {
   return j == 0.0 ? p : 2.0 * j * elliptic_pi_complete(n, m, m1) + p;
 }
 
-double elliptic_pi(double n, double phi, double m) { return elliptic_pi(n, phi, m, 1.0 - m); }
+double elliptic_pi(double n, double phi, double m) {
+  return elliptic_pi(n, phi, m, 1.0 - m);
+}
 
 }  // namespace tumble::engine

@@ -35,7 +35,8 @@ class ExplicitEuler final : public BodyStepper {
     const Eigen::Vector3d& J = body_.moments;
     const Eigen::Vector3d w_b = s.orientation.conjugate() * r.omega;
     const Eigen::Vector3d tau_b = s.orientation.conjugate() * r.torque;
-    const Eigen::Vector3d w_b_new = w_b + h * (tau_b - w_b.cross(J.cwiseProduct(w_b))).cwiseQuotient(J);
+    const Eigen::Vector3d w_b_new =
+        w_b + h * (tau_b - w_b.cross(J.cwiseProduct(w_b))).cwiseQuotient(J);
     if (!body_.pivoted) {
       s.position += h * s.velocity;
       s.velocity += h * r.acceleration;
@@ -196,21 +197,32 @@ std::unique_ptr<BodyStepper> make_stepper(IntegratorKind kind, const BodyModel& 
                                           const BodyState& initial, const StepSettings& settings) {
   using K = IntegratorKind;
   switch (kind) {
-    case K::kExplicitEuler: return steppers::make_explicit_euler(body);
-    case K::kSemiImplicitEuler: return steppers::make_semi_implicit_euler(body);
-    case K::kSeedSemiImplicit: return steppers::make_seed_semi_implicit(body);
-    case K::kImplicitEuler: return steppers::make_implicit_euler(body);
-    case K::kRk4: return steppers::make_rk4(body);
-    case K::kMidpoint: return steppers::make_midpoint(body);
-    case K::kSplitting: return steppers::make_splitting(body, 2);
-    case K::kSplitting4: return steppers::make_splitting(body, 4);
-    case K::kFreeRotor: return steppers::make_free_rotor(body);
-    case K::kDopri: return steppers::make_dopri(body, settings.tolerance);
+    case K::kExplicitEuler:
+      return steppers::make_explicit_euler(body);
+    case K::kSemiImplicitEuler:
+      return steppers::make_semi_implicit_euler(body);
+    case K::kSeedSemiImplicit:
+      return steppers::make_seed_semi_implicit(body);
+    case K::kImplicitEuler:
+      return steppers::make_implicit_euler(body);
+    case K::kRk4:
+      return steppers::make_rk4(body);
+    case K::kMidpoint:
+      return steppers::make_midpoint(body);
+    case K::kSplitting:
+      return steppers::make_splitting(body, 2);
+    case K::kSplitting4:
+      return steppers::make_splitting(body, 4);
+    case K::kFreeRotor:
+      return steppers::make_free_rotor(body);
+    case K::kDopri:
+      return steppers::make_dopri(body, settings.tolerance);
     case K::kExact:
       if (!body.torque_free()) {
-        throw InputError("body '" + body.name +
-                         "': the exact integrator needs a torque-free body (no pivot under gravity, "
-                         "no torque, no spring); choose another integrator");
+        throw InputError(
+            "body '" + body.name +
+            "': the exact integrator needs a torque-free body (no pivot under gravity, "
+            "no torque, no spring); choose another integrator");
       }
       return steppers::make_exact(body, initial);
   }

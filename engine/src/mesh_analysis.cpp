@@ -35,15 +35,16 @@ std::string plural(std::size_t count, const std::string& noun) {
 }
 
 [[noreturn]] void fail_zero_volume(const std::string& source) {
-  fail(source, "encloses zero volume (a flat or collapsed surface); for a thin sheet use "
-               "--shell THICKNESS");
+  fail(source,
+       "encloses zero volume (a flat or collapsed surface); for a thin sheet use "
+       "--shell THICKNESS");
 }
 
 void check_options(const MassOptions& options, const std::string& source) {
   const auto positive = [&](const char* name, double value) {
     if (!std::isfinite(value) || value <= 0.0) {
-      fail(source, std::string(name) + " must be a positive finite number, got " +
-                       format_number(value));
+      fail(source,
+           std::string(name) + " must be a positive finite number, got " + format_number(value));
     }
   };
   if (options.density && options.mass) fail(source, "give either a density or a mass, not both");
@@ -64,7 +65,7 @@ double solid_angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eig
 
 /// Per-part signed volumes, bounding boxes and a sample vertex, in one pass.
 struct PartSummary {
-  double signed_volume = 0.0;  // times 6
+  double signed_volume = 0.0;    // times 6
   double absolute_volume = 0.0;  // sum of |det|, the scale of rounding in signed_volume
   Eigen::Vector3d low = Eigen::Vector3d::Constant(INFINITY);
   Eigen::Vector3d high = Eigen::Vector3d::Constant(-INFINITY);
@@ -172,7 +173,8 @@ void orient_parts(std::vector<PartSummary>& parts, double signed_total, const Tr
 void flip_reversed_parts(TriangleMesh& mesh, const Topology& topology,
                          const std::vector<PartSummary>& parts) {
   for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
-    if (parts[topology.triangle_part[i]].reversed) std::swap(mesh.triangles[i][1], mesh.triangles[i][2]);
+    if (parts[topology.triangle_part[i]].reversed)
+      std::swap(mesh.triangles[i][1], mesh.triangles[i][2]);
   }
 }
 
@@ -199,7 +201,8 @@ void weld_and_clean(TriangleMesh& mesh, bool distinct_positions, MeshReport& rep
     fail(report.source, "all " + plural(report.input_triangles, "triangle") + " are degenerate");
   }
   if (report.degenerate_triangles > 0) {
-    report.warnings.push_back("skipped " + plural(report.degenerate_triangles, "degenerate triangle"));
+    report.warnings.push_back("skipped " +
+                              plural(report.degenerate_triangles, "degenerate triangle"));
   }
 }
 
@@ -339,9 +342,9 @@ MeshReport analyze_mesh(TriangleMesh mesh, const MassOptions& options, const std
   report.shell = options.shell_thickness.has_value();
   if (mesh.triangles.empty()) fail(source, "contains no triangles");
 
-  scale_positions(mesh, options.scale, source);             // metres, finite
-  weld_and_clean(mesh, distinct_positions, report);         // welded, no degenerate triangles
-  const Eigen::Vector3d reference = bound(mesh, report);    // bounding-box centre
+  scale_positions(mesh, options.scale, source);                 // metres, finite
+  weld_and_clean(mesh, distinct_positions, report);             // welded, no degenerate triangles
+  const Eigen::Vector3d reference = bound(mesh, report);        // bounding-box centre
   TopologyPass pass = check_topology(mesh, reference, report);  // edges and parts
   if (report.shell) {
     shell_properties(mesh, reference, options, report);

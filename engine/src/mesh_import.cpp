@@ -7,9 +7,9 @@
 // small meshes). Node transforms are applied by walking the node tree in double precision.
 #include "engine/mesh_import.hpp"
 
-#include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <assimp/Importer.hpp>
 
 #include <Eigen/LU>
 
@@ -20,8 +20,8 @@
 
 #include "binary_stl.hpp"
 #include "engine/input_error.hpp"
-#include "vertex_welding.hpp"
 #include "split_in_two.hpp"
+#include "vertex_welding.hpp"
 
 namespace tumble::engine {
 namespace {

@@ -87,8 +87,8 @@ std::vector<std::vector<BodyState>> ReferenceMotion::dopri_run(double interval,
   samples.reserve(simulation.total_steps());
   while (simulation.step()) samples.push_back(simulation.states());
   if (const auto& blow_up = simulation.blow_up()) {
-    throw InputError("the reference (" + description() + ") blew up at t = " +
-                     short_number(blow_up->time) + " s: " + blow_up->reason);
+    throw InputError("the reference (" + description() +
+                     ") blew up at t = " + short_number(blow_up->time) + " s: " + blow_up->reason);
   }
   return samples;
 }

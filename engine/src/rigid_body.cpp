@@ -24,7 +24,8 @@ bool BodyModel::torque_free() const {
 bool BodyModel::conservative() const {
   for (const ForceTerm& term : forces) {
     if (std::holds_alternative<ConstantTorque>(term)) return false;
-    if (const auto* spring = std::get_if<Spring>(&term); spring && spring->damping != 0.0) return false;
+    if (const auto* spring = std::get_if<Spring>(&term); spring && spring->damping != 0.0)
+      return false;
   }
   return true;
 }
@@ -59,16 +60,17 @@ Wrench wrench(const BodyModel& body, const BodyState& state, const Eigen::Vector
                      }
                    },
                    [&](const ConstantTorque& torque) {
-                     out.torque += torque.body_frame ? Eigen::Vector3d(state.orientation * torque.torque)
-                                                     : torque.torque;
+                     out.torque += torque.body_frame
+                                       ? Eigen::Vector3d(state.orientation * torque.torque)
+                                       : torque.torque;
                    },
                    [&](const Spring& spring) {
                      const Eigen::Vector3d arm = state.orientation * spring.attach;
                      const Eigen::Vector3d point = rotation_centre(body, state) + arm;
                      Eigen::Vector3d point_velocity = omega.cross(arm);
                      if (!body.pivoted) point_velocity += state.velocity;
-                     const Eigen::Vector3d force =
-                         -spring.stiffness * (point - spring.anchor) - spring.damping * point_velocity;
+                     const Eigen::Vector3d force = -spring.stiffness * (point - spring.anchor) -
+                                                   spring.damping * point_velocity;
                      out.force += force;
                      out.torque += arm.cross(force);
                    },
@@ -87,7 +89,8 @@ double energy(const BodyModel& body, const BodyState& state) {
     if (const auto* gravity = std::get_if<Gravity>(&term)) {
       total -= body.mass * gravity->acceleration.dot(state.position);
     } else if (const auto* spring = std::get_if<Spring>(&term)) {
-      const Eigen::Vector3d point = rotation_centre(body, state) + state.orientation * spring->attach;
+      const Eigen::Vector3d point =
+          rotation_centre(body, state) + state.orientation * spring->attach;
       total += 0.5 * spring->stiffness * (point - spring->anchor).squaredNorm();
     }
   }

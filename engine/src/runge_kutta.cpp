@@ -30,7 +30,8 @@ Eigen::Vector3d dexp_inverse(const Eigen::Vector3d& theta, const Eigen::Vector3d
 
 class Rk4 final : public BodyStepper {
  public:
-  explicit Rk4(const BodyModel& body) : body_(body), inverse_moments_(body.moments.cwiseInverse()) {}
+  explicit Rk4(const BodyModel& body)
+      : body_(body), inverse_moments_(body.moments.cwiseInverse()) {}
   void step(BodyState& s, double, double h) override {
     const bool moves = !body_.pivoted;
     BodyState stage = s;
@@ -60,7 +61,8 @@ class Rk4 final : public BodyStepper {
     const double sixth = h / 6.0;
     if (moves) {
       s.position += sixth * (k1.velocity + 2.0 * (k2.velocity + k3.velocity) + k4.velocity);
-      s.velocity += sixth * (k1.acceleration + 2.0 * (k2.acceleration + k3.acceleration) + k4.acceleration);
+      s.velocity +=
+          sixth * (k1.acceleration + 2.0 * (k2.acceleration + k3.acceleration) + k4.acceleration);
     }
     s.angular_momentum += sixth * (k1.torque + 2.0 * (k2.torque + k3.torque) + k4.torque);
     s.orientation =
@@ -81,7 +83,9 @@ Vector13 pack(const BodyState& s, const Eigen::Vector3d& momentum) {
   return y;
 }
 
-Eigen::Quaterniond quaternion_of(const Vector13& y) { return {y[6], y[7], y[8], y[9]}; }
+Eigen::Quaterniond quaternion_of(const Vector13& y) {
+  return {y[6], y[7], y[8], y[9]};
+}
 
 /// dq/dt for q (not necessarily unit) turning at angular velocity w (world: w q, body: q w).
 Eigen::Vector4d quaternion_rate(const Eigen::Quaterniond& q, const Eigen::Vector3d& w, bool body) {
@@ -216,9 +220,9 @@ class Dopri final : public BodyStepper {
     const Vector13 k4 = rate(y + h * ((44.0 / 45.0) * k1 - (56.0 / 15.0) * k2 + (32.0 / 9.0) * k3));
     const Vector13 k5 = rate(y + h * ((19372.0 / 6561.0) * k1 - (25360.0 / 2187.0) * k2 +
                                       (64448.0 / 6561.0) * k3 - (212.0 / 729.0) * k4));
-    const Vector13 k6 = rate(y + h * ((9017.0 / 3168.0) * k1 - (355.0 / 33.0) * k2 +
-                                      (46732.0 / 5247.0) * k3 + (49.0 / 176.0) * k4 -
-                                      (5103.0 / 18656.0) * k5));
+    const Vector13 k6 =
+        rate(y + h * ((9017.0 / 3168.0) * k1 - (355.0 / 33.0) * k2 + (46732.0 / 5247.0) * k3 +
+                      (49.0 / 176.0) * k4 - (5103.0 / 18656.0) * k5));
     next = y + h * ((35.0 / 384.0) * k1 + (500.0 / 1113.0) * k3 + (125.0 / 192.0) * k4 -
                     (2187.0 / 6784.0) * k5 + (11.0 / 84.0) * k6);
     const Vector13 k7 = rate(next);
@@ -233,7 +237,9 @@ class Dopri final : public BodyStepper {
 
 }  // namespace
 
-std::unique_ptr<BodyStepper> make_rk4(const BodyModel& body) { return std::make_unique<Rk4>(body); }
+std::unique_ptr<BodyStepper> make_rk4(const BodyModel& body) {
+  return std::make_unique<Rk4>(body);
+}
 std::unique_ptr<BodyStepper> make_midpoint(const BodyModel& body) {
   return std::make_unique<Midpoint>(body);
 }

@@ -23,10 +23,11 @@
 // (DLMF 19.25.14 with F(am u) = u). For long times u is reduced by the half period 2K:
 // Pi~(u + 2K) = Pi~(u) + 2 Pi(n|m), so phi gains a fixed Phi_half per half period, and the
 // state at any time costs one sn/cn/dn and one R_J. The auxiliary frame is anchored on the
-// state at t = 0, so the constant in phi never has to be computed; keeping w3 > 0 (a proper re-labelling) keeps theta in [0, pi/2)
-// where the Euler angles are well conditioned; psi is unwrapped across half periods so the
-// quaternion is continuous in t. Cf. Celledoni, Fasso, Safstrom, Zanna (2008), SIAM J. Sci.
-// Comput. 30(4), which uses theta functions for the same integral.
+// state at t = 0, so the constant in phi never has to be computed; keeping w3 > 0 (a proper
+// re-labelling) keeps theta in [0, pi/2) where the Euler angles are well conditioned; psi is
+// unwrapped across half periods so the quaternion is continuous in t. Cf. Celledoni, Fasso,
+// Safstrom, Zanna (2008), SIAM J. Sci. Comput. 30(4), which uses theta functions for the same
+// integral.
 //
 // Units: internally omega and the moments are scaled by powers of two to magnitudes near 1 (the
 // motion is homogeneous in both, and the scaling is exact), so extreme magnitudes neither
@@ -120,15 +121,15 @@ TorqueFreeMotion::TorqueFreeMotion(const Eigen::Vector3d& moments,
 }
 
 TorqueFreeMotion::InternalStart TorqueFreeMotion::enter_internal_frame(const Eigen::Vector3d& jn,
-                                                                      const Eigen::Vector3d& w) {
+                                                                       const Eigen::Vector3d& w) {
   // Sort the axes and pick the circled axis from the sign of d = G^2 - 2T I2.
   std::array<int, 3> order{0, 1, 2};
   std::stable_sort(order.begin(), order.end(), [&](int x, int y) { return jn[x] < jn[y]; });
   const int lo = order[0];
   const int mid = order[1];
   const int hi = order[2];
-  const double d_sorted = jn[lo] * (jn[lo] - jn[mid]) * w[lo] * w[lo] +
-                          jn[hi] * (jn[hi] - jn[mid]) * w[hi] * w[hi];
+  const double d_sorted =
+      jn[lo] * (jn[lo] - jn[mid]) * w[lo] * w[lo] + jn[hi] * (jn[hi] - jn[mid]) * w[hi] * w[hi];
   const bool about_largest = d_sorted >= 0.0;
   const std::array<int, 3> axis =
       about_largest ? std::array<int, 3>{lo, mid, hi} : std::array<int, 3>{hi, mid, lo};
@@ -170,9 +171,9 @@ bool TorqueFreeMotion::solve_elliptic(const InternalStart& start) {
   m_ = std::clamp((j2 - j1) * a / ((j3 - j2) * b), 0.0, 1.0);
   m1_ = std::clamp((j3 - j1) * d / ((j3 - j2) * b), 0.0, 1.0);
   if (m1_ == 0.0) m_ = 1.0;
-  regime_ = m1_ == 0.0 ? Regime::kSeparatrix
-                       : (start.about_largest ? Regime::kAboutLargestAxis
-                                              : Regime::kAboutSmallestAxis);
+  regime_ = m1_ == 0.0
+                ? Regime::kSeparatrix
+                : (start.about_largest ? Regime::kAboutLargestAxis : Regime::kAboutSmallestAxis);
   n_ = -j3 * (j2 - j1) / (j1 * (j3 - j2));
   g_ = j_.cwiseProduct(start.omega).norm();
   c_ = g_ * (j3 - j1) / (j1 * j3);

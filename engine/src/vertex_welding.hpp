@@ -24,9 +24,9 @@
 #include <memory>
 #include <numeric>
 #include <span>
-#include <type_traits>
 #include <stdexcept>
 #include <thread>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -42,7 +42,7 @@ struct WeldMap {
   /// 4 bytes per vertex are written once rather than zeroed first). It points either into
   /// `storage` or into the scratch memory given to weld_positions.
   std::uint32_t* new_index = nullptr;
-  std::vector<std::uint32_t> kept;  ///< input index of each welded vertex, ascending
+  std::vector<std::uint32_t> kept;           ///< input index of each welded vertex, ascending
   std::unique_ptr<std::uint32_t[]> storage;  ///< new_index's memory when no scratch held it
 };
 
@@ -91,8 +91,8 @@ std::uint32_t cache_hash(const std::array<B, 3>& bits) {
   if constexpr (sizeof(B) == 4) {
     return (bits[0] * 0x9e3779b1u) ^ (bits[1] * 0x85ebca77u) ^ (bits[2] * 0xc2b2ae3du);
   } else {
-    const std::uint64_t h = (bits[0] * 0x9e3779b97f4a7c15ull) ^
-                            (bits[1] * 0xc2b2ae3d27d4eb4full) ^ (bits[2] * 0x165667b19e3779f9ull);
+    const std::uint64_t h = (bits[0] * 0x9e3779b97f4a7c15ull) ^ (bits[1] * 0xc2b2ae3d27d4eb4full) ^
+                            (bits[2] * 0x165667b19e3779f9ull);
     return static_cast<std::uint32_t>(h >> 32);
   }
 }
@@ -192,8 +192,8 @@ class Welder {
   std::size_t half_ = 0;
   std::vector<std::size_t> candidates_end_ = std::vector<std::size_t>(threads_);
   std::vector<std::vector<Rec>> overflow_ = std::vector<std::vector<Rec>>(threads_);
-  std::vector<std::vector<std::size_t>> counts_ = std::vector<std::vector<std::size_t>>(
-      threads_, std::vector<std::size_t>(partitions_, 0));
+  std::vector<std::vector<std::size_t>> counts_ =
+      std::vector<std::vector<std::size_t>>(threads_, std::vector<std::size_t>(partitions_, 0));
   std::vector<std::size_t> start_ = std::vector<std::size_t>(partitions_ + 1, 0);
   std::unique_ptr<Rec[]> records_storage_;
   Rec* records_ = nullptr;
@@ -428,8 +428,7 @@ WeldMap Welder<Scalar, PositionOf>::number_survivors() {
 /// (a million-triangle soup needs ~30 MB of them otherwise). The index map then lives in the
 /// scratch memory, and is valid as long as it is. The result does not depend on the scratch.
 template <typename Scalar, typename PositionOf>
-WeldMap weld_positions(std::size_t count, PositionOf position,
-                       std::span<std::byte> scratch = {}) {
+WeldMap weld_positions(std::size_t count, PositionOf position, std::span<std::byte> scratch = {}) {
   if (count >= std::numeric_limits<std::uint32_t>::max()) {
     throw std::length_error("weld_positions: more than 2^32 - 1 vertices");
   }

@@ -13,7 +13,7 @@ struct GpuMesh {
   GlVertexArray vao;
   GlBuffer vertex_buffer;
   GlBuffer index_buffer;  // none when the mesh was un-indexed for flat shading
-  GLsizei count = 0;        // indices (or vertices) to draw
+  GLsizei count = 0;      // indices (or vertices) to draw
   Eigen::Vector3f centre = Eigen::Vector3f::Zero();  // bounding sphere in the body frame
   float radius = 0.0f;
 

@@ -72,8 +72,8 @@ struct OffscreenContext::Impl {
 OffscreenContext::OffscreenContext(int width, int height, int samples)
     : impl_(std::make_unique<Impl>()), width_(width), height_(height) {
   if (width <= 0 || height <= 0 || width > 16384 || height > 16384) {
-    throw std::invalid_argument("offscreen context: invalid image size " +
-                                std::to_string(width) + "x" + std::to_string(height));
+    throw std::invalid_argument("offscreen context: invalid image size " + std::to_string(width) +
+                                "x" + std::to_string(height));
   }
   // llvmpipe reads its thread count at context creation; 2 is fastest on this class of machine.
   ::setenv("LP_NUM_THREADS", "2", /*overwrite=*/0);

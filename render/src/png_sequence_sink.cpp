@@ -109,9 +109,8 @@ class PngSequenceSink final : public ImageSink {
     } catch (const std::filesystem::filesystem_error& e) {
       abort();
       const std::lock_guard lock(failure_mutex_);
-      failure_ = std::make_exception_ptr(
-          InputError("cannot move PNG frames into '" + target_.string() + "': " +
-                     e.code().message()));
+      failure_ = std::make_exception_ptr(InputError("cannot move PNG frames into '" +
+                                                    target_.string() + "': " + e.code().message()));
       std::rethrow_exception(failure_);
     } catch (...) {
       abort();

@@ -40,7 +40,9 @@ MeshId Renderer::upload(const MeshData& mesh) {
   return MeshId{static_cast<std::uint32_t>(impl_->meshes.size() - 1)};
 }
 
-std::size_t Renderer::mesh_count() const { return impl_->meshes.size(); }
+std::size_t Renderer::mesh_count() const {
+  return impl_->meshes.size();
+}
 
 void Renderer::release_meshes(std::size_t keep) {
   if (keep >= impl_->meshes.size()) return;
@@ -55,7 +57,9 @@ Image Renderer::render(const DrawList& frame) {
   return image;
 }
 
-void Renderer::render(const DrawList& frame, Image& out) { render(frame, out, ExtraPass{}); }
+void Renderer::render(const DrawList& frame, Image& out) {
+  render(frame, out, ExtraPass{});
+}
 
 void Renderer::render(const DrawList& frame, Image& out, const ExtraPass& extra) {
   OffscreenContext& context = impl_->context;

@@ -12,7 +12,8 @@ namespace {
 using tumble::engine::TorqueFreeMotion;
 
 const Eigen::Vector3d kMoments(1.0, 2.0, 3.0);
-const Eigen::Quaterniond kOrientation(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()));
+const Eigen::Quaterniond kOrientation(Eigen::AngleAxisd(0.7,
+                                                        Eigen::Vector3d(1, 2, 3).normalized()));
 
 // range(0): 0 = generic (m ~ 0.3), 1 = near the separatrix (m1 ~ 1e-8), 2 = symmetric body.
 Eigen::Vector3d omega_for(int64_t which) {

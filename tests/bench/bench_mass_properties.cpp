@@ -11,8 +11,8 @@
 //   BM_Weld, BM_Topology     the two linear-time passes, for the breakdown
 #include <benchmark/benchmark.h>
 
-#include <assimp/Importer.hpp>
 #include <assimp/scene.h>
+#include <assimp/Importer.hpp>
 
 #include <algorithm>
 #include <filesystem>

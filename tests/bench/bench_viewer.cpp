@@ -45,13 +45,13 @@ void BM_ViewerFrame(benchmark::State& state) {
     keep_playing(viewer);
     viewer.update(kFrameSeconds);
     const render::DrawList list = viewer.frame();
-    renderer.render(list, image,
-                    layer.pass(static_cast<float>(kFrameSeconds),
-                               [&] { panels.draw(viewer, {60.0, 16.7}, kWidth, kHeight); }));
+    renderer.render(list, image, layer.pass(static_cast<float>(kFrameSeconds), [&] {
+      panels.draw(viewer, {60.0, 16.7}, kWidth, kHeight);
+    }));
     benchmark::DoNotOptimize(image.rgba.data());
   }
-  state.counters["fps"] = benchmark::Counter(static_cast<double>(state.iterations()),
-                                             benchmark::Counter::kIsRate);
+  state.counters["fps"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_ViewerFrame)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
 
@@ -66,8 +66,8 @@ void BM_ViewerFrameNoPanels(benchmark::State& state) {
     renderer.render(viewer.frame(), image);
     benchmark::DoNotOptimize(image.rgba.data());
   }
-  state.counters["fps"] = benchmark::Counter(static_cast<double>(state.iterations()),
-                                             benchmark::Counter::kIsRate);
+  state.counters["fps"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_ViewerFrameNoPanels)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
 

@@ -22,8 +22,9 @@ inline double largest_moment(const Eigen::Matrix3d& inertia) {
 inline void expect_inertia_near(const Eigen::Matrix3d& actual, const Eigen::Matrix3d& expected,
                                 double relative = kExact) {
   const double tolerance = relative * largest_moment(expected);
-  EXPECT_LE((actual - expected).cwiseAbs().maxCoeff(), tolerance)
-      << "actual\n" << actual << "\nexpected\n" << expected;
+  EXPECT_LE((actual - expected).cwiseAbs().maxCoeff(), tolerance) << "actual\n"
+                                                                  << actual << "\nexpected\n"
+                                                                  << expected;
 }
 
 /// Every component of `actual` within `tolerance` of `expected`.

@@ -425,7 +425,7 @@ TEST(HeavyTop, PrecessionAndNutationRatesMatchGyroscopicApproximation) {
   const double tilt = 0.3;
   const BodyState start =
       spinning_state(top, Eigen::Quaterniond(Eigen::AngleAxisd(tilt, Eigen::Vector3d::UnitX())),
-               Eigen::Vector3d(0.0, 0.0, spin));
+                     Eigen::Vector3d(0.0, 0.0, spin));
 
   const double precession_expected = mass * g * l / (i3 * spin);
   const double nutation_expected = i3 * spin / i1;

@@ -71,8 +71,7 @@ Eigen::Matrix3d shifted(const Eigen::Matrix3d& inertia, double mass, const Eigen
 /// The message of the InputError `analyze_mesh` throws (fails the test if it does not).
 std::string error_of(const TriangleMesh& mesh, const MassOptions& options = {},
                      const std::string& source = "part.stl") {
-  return tumble::testing::input_error_of([&] { analyze_mesh(mesh, options, source); },
-                                         "the mesh");
+  return tumble::testing::input_error_of([&] { analyze_mesh(mesh, options, source); }, "the mesh");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -337,9 +336,10 @@ TEST(MeshChecks, NestedPartWithTheSameOrientationIsCountedTwiceWithAWarning) {
   const MeshReport report = analyze_mesh(joined(box(outer, {0, 0, 0}), box(inner, {0, 0, 0})),
                                          with_density(1.0), "nested.stl");
   EXPECT_EQ(report.cavities, 0u);
-  EXPECT_THAT(report.warnings,
-              ElementsAre(AllOf(HasSubstr("part 2 of 2 lies inside another part with the same orientation"),
-                                HasSubstr("counts twice"))));
+  EXPECT_THAT(
+      report.warnings,
+      ElementsAre(AllOf(HasSubstr("part 2 of 2 lies inside another part with the same orientation"),
+                        HasSubstr("counts twice"))));
   // The integral adds both solids: that is what the warning says.
   EXPECT_NEAR(report.volume, outer.prod() + inner.prod(), kExact * outer.prod());
   expect_inertia_near(report.mass_properties.inertia,

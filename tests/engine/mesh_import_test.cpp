@@ -50,9 +50,9 @@ using mesh_fixtures::Polyhedron;
 using mesh_fixtures::SolidMoments;
 using mesh_fixtures::TempDir;
 using ::testing::HasSubstr;
-using tumble::testing::input_error_of;
 using ::testing::IsEmpty;
 using ::testing::StartsWith;
+using tumble::testing::input_error_of;
 namespace fixtures = mesh_fixtures;
 
 constexpr double kDensity = 1000.0;  // analyze_mesh's default
@@ -139,7 +139,6 @@ void expect_body(const MeshReport& report, const SolidMoments& expected, double 
       << report.mass_properties.inertia << "\nexpected\n"
       << inertia;
 }
-
 
 // --- The oracle itself ---------------------------------------------------------------------
 

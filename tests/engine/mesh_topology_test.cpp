@@ -120,8 +120,8 @@ TEST(RemoveUnreferencedVertices, KeepsUsedVerticesInOrderAndRenumbers) {
   // The tetrahedron's four vertices spread among unused ones: first, middle and last, or
   // only after some used ones.
   const TriangleMesh expected = tetrahedron();
-  for (const std::vector<bool>& used : {std::vector<bool>{0, 1, 1, 0, 1, 1, 0},
-                                        std::vector<bool>{1, 1, 0, 1, 0, 0, 1}}) {
+  for (const std::vector<bool>& used :
+       {std::vector<bool>{0, 1, 1, 0, 1, 1, 0}, std::vector<bool>{1, 1, 0, 1, 0, 0, 1}}) {
     TriangleMesh mesh;
     std::vector<std::uint32_t> moved;
     for (std::size_t i = 0; i < used.size(); ++i) {
@@ -318,10 +318,18 @@ TEST(AnalyzeTopology, EdgeCountsMatchTheDefinitionOnDamagedMeshes) {
     for (int k = 0; k < damage; ++k) {
       Triangle& t = mesh.triangles[face(random)];
       switch (random() % 4) {
-        case 0: t = mesh.triangles.back(), mesh.triangles.pop_back(); break;
-        case 1: std::swap(t[1], t[2]); break;
-        case 2: mesh.triangles.push_back(t); break;
-        default: mesh.triangles.push_back({t[0], t[2], t[1]}); break;
+        case 0:
+          t = mesh.triangles.back(), mesh.triangles.pop_back();
+          break;
+        case 1:
+          std::swap(t[1], t[2]);
+          break;
+        case 2:
+          mesh.triangles.push_back(t);
+          break;
+        default:
+          mesh.triangles.push_back({t[0], t[2], t[1]});
+          break;
       }
     }
     // A hub joined to a ring of random vertices, closed or not.

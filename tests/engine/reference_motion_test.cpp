@@ -29,14 +29,15 @@ FreeScene free_scene() {
   handle.moments = Eigen::Vector3d(1.0, 2.0, 3.0);
   const Eigen::Quaterniond turn(Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, -1, 2).normalized()));
   scene.bodies.push_back(handle);
-  scene.initial.push_back(tumble::engine::spinning_state(handle, turn, Eigen::Vector3d(1.0, 0.5, 2.0)));
+  scene.initial.push_back(
+      tumble::engine::spinning_state(handle, turn, Eigen::Vector3d(1.0, 0.5, 2.0)));
 
   BodyModel ball;
   ball.mass = 2.0;
   ball.moments = Eigen::Vector3d(0.5, 0.5, 0.5);
   ball.forces.emplace_back(tumble::engine::Gravity{Eigen::Vector3d(0.0, 0.0, -10.0)});
-  BodyState thrown =
-      tumble::engine::spinning_state(ball, Eigen::Quaterniond::Identity(), Eigen::Vector3d(1, 0, 0));
+  BodyState thrown = tumble::engine::spinning_state(ball, Eigen::Quaterniond::Identity(),
+                                                    Eigen::Vector3d(1, 0, 0));
   thrown.position = Eigen::Vector3d(1.0, 2.0, 3.0);
   thrown.velocity = Eigen::Vector3d(0.5, 0.0, 4.0);
   scene.bodies.push_back(ball);
@@ -54,9 +55,8 @@ TEST(ReferenceMotion, TorqueFreeBodiesGetTheExactSolution) {
   EXPECT_FALSE(reference.check_run().has_value());
 
   // The handle turns as TorqueFreeMotion says, from w = (1, 0.5, 2) in principal axes.
-  const tumble::engine::TorqueFreeMotion exact(scene.bodies[0].moments,
-                                                scene.initial[0].orientation,
-                                                Eigen::Vector3d(1.0, 0.5, 2.0));
+  const tumble::engine::TorqueFreeMotion exact(
+      scene.bodies[0].moments, scene.initial[0].orientation, Eigen::Vector3d(1.0, 0.5, 2.0));
   const double t = 7.3;
   const std::vector<BodyState> states = reference.at(t);
   ASSERT_EQ(states.size(), 2u);
@@ -98,8 +98,8 @@ ForcedScene forced_scene() {
   sphere.moments = Eigen::Vector3d(0.5, 0.5, 0.5);
   sphere.forces.emplace_back(tumble::engine::ConstantTorque{Eigen::Vector3d(0.0, 0.0, 2.0), false});
   scene.bodies.push_back(sphere);
-  scene.initial.push_back(
-      tumble::engine::spinning_state(sphere, Eigen::Quaterniond::Identity(), Eigen::Vector3d(0, 0, 2)));
+  scene.initial.push_back(tumble::engine::spinning_state(sphere, Eigen::Quaterniond::Identity(),
+                                                         Eigen::Vector3d(0, 0, 2)));
 
   BodyModel ball;
   ball.mass = 2.0;
@@ -125,7 +125,8 @@ TEST(ReferenceMotion, ForcedBodiesGetDopriAtTheReferenceTolerance) {
   // ball oscillates, x = 0.3 cos(2 t).
   const double t = 1.5;
   const std::vector<BodyState> states = reference.at(t);
-  const Eigen::Quaterniond turned(Eigen::AngleAxisd(2.0 * t + 2.0 * t * t, Eigen::Vector3d::UnitZ()));
+  const Eigen::Quaterniond turned(
+      Eigen::AngleAxisd(2.0 * t + 2.0 * t * t, Eigen::Vector3d::UnitZ()));
   EXPECT_LT(tumble::engine::orientation_angle(states[0].orientation, turned), 1e-11);
   EXPECT_NEAR(states[0].angular_momentum.z(), 1.0 + 2.0 * t, 1e-12);
   EXPECT_NEAR(states[1].position.x(), 0.3 * std::cos(2.0 * t), 1e-12);
@@ -152,7 +153,8 @@ TEST(ReferenceMotion, TheCheckRunIsADecadeLooserAndAgreesOnThatScale) {
     const double x = 0.3 * std::cos(2.0 * t);
     worst_tight = std::max(worst_tight, std::abs(tight[k][1].position.x() - x));
     worst_loose = std::max(worst_loose, std::abs(loose[k][1].position.x() - x));
-    difference = std::max(difference, std::abs(tight[k][1].position.x() - loose[k][1].position.x()));
+    difference =
+        std::max(difference, std::abs(tight[k][1].position.x() - loose[k][1].position.x()));
   }
   // Both within a few tens of tolerances of the oscillator's amplitude over 3 s; the tighter
   // run is the closer; they differ by about the looser run's error.

@@ -25,7 +25,8 @@ BodyModel box() {
 }
 
 /// A quarter turn about world z: principal x goes to world y.
-const Eigen::Quaterniond kQuarterTurnZ(Eigen::AngleAxisd(std::numbers::pi / 2, Eigen::Vector3d::UnitZ()));
+const Eigen::Quaterniond kQuarterTurnZ(Eigen::AngleAxisd(std::numbers::pi / 2,
+                                                         Eigen::Vector3d::UnitZ()));
 
 TEST(Invariants, SpinningBoxHasHalfOmegaIOmegaAndTheNormOfIOmega) {
   const BodyModel body = box();
@@ -42,8 +43,8 @@ TEST(Invariants, SpinningBoxHasHalfOmegaIOmegaAndTheNormOfIOmega) {
 TEST(Invariants, GravityAndASpringAddTheirPotentials) {
   BodyModel body = box();
   body.forces.emplace_back(Gravity{Eigen::Vector3d(0.0, 0.0, -9.81)});
-  body.forces.emplace_back(Spring{Eigen::Vector3d(0.0, 1.0, 0.0), Eigen::Vector3d(1.0, 0.0, 0.0),
-                                  3.0, 0.0});
+  body.forces.emplace_back(
+      Spring{Eigen::Vector3d(0.0, 1.0, 0.0), Eigen::Vector3d(1.0, 0.0, 0.0), 3.0, 0.0});
   BodyState state;  // at rest, no kinetic energy
   state.position = Eigen::Vector3d(0.0, 0.0, 2.0);
   state.orientation = kQuarterTurnZ;  // the attach point (1, 0, 0) is at world (0, 1, 2)
@@ -58,12 +59,13 @@ TEST(Invariants, SumsTakeEveryBodyOrOnlyWhereConserved) {
   BodyModel torqued = box();
   torqued.forces.emplace_back(ConstantTorque{Eigen::Vector3d(0.0, 0.0, 1.0), false});
   BodyModel damped = box();
-  damped.forces.emplace_back(Spring{Eigen::Vector3d::Zero(), Eigen::Vector3d(1.0, 0.0, 0.0), 2.0, 0.5});
+  damped.forces.emplace_back(
+      Spring{Eigen::Vector3d::Zero(), Eigen::Vector3d(1.0, 0.0, 0.0), 2.0, 0.5});
   const std::vector<BodyModel> bodies = {free, torqued, damped};
   // Each spins at 2 rad/s about principal z (E = 2.5 * 4 / 2 = 5, |L| = 5); the damped spring's
   // attach point sits 1 m from its anchor (k 1^2 / 2 = 1).
-  const BodyState spin =
-      tumble::engine::spinning_state(free, Eigen::Quaterniond::Identity(), Eigen::Vector3d(0, 0, 2));
+  const BodyState spin = tumble::engine::spinning_state(free, Eigen::Quaterniond::Identity(),
+                                                        Eigen::Vector3d(0, 0, 2));
   const std::vector<BodyState> states = {spin, spin, spin};
 
   const auto all = tumble::engine::total_invariants(bodies, states);

@@ -396,7 +396,7 @@ TEST(Simulation, IdenticalRunsAreBitIdenticalForEveryIntegrator) {
   falling_start.velocity = Eigen::Vector3d(1.0, 0.5, 3.0);
   const BodyState top_start =
       spinning_state(top, Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX())),
-               Eigen::Vector3d(0.0, 0.0, 50.0));
+                     Eigen::Vector3d(0.0, 0.0, 50.0));
 
   for (const IntegratorInfo& info : integrator_catalog()) {
     SCOPED_TRACE(info.name);

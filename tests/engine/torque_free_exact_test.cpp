@@ -136,7 +136,7 @@ TEST(TorqueFreeMotion, GenericCasesAndBothRegimesMatchRk4) {
       {{1, 2, 3}, {-1.0, -0.4, -0.3}, Regime::kAboutSmallestAxis},
       {{2, 3, 1}, {-1.0, 0.2, -0.3}, Regime::kAboutLargestAxis},
       {{0.3, 0.5, 0.7}, {4.0, -3.0, 2.0}, Regime::kAboutSmallestAxis},
-      {{1, 10, 10.5}, {0.001, 0.3, 1.0}, Regime::kAboutLargestAxis},  // large |n|
+      {{1, 10, 10.5}, {0.001, 0.3, 1.0}, Regime::kAboutLargestAxis},   // large |n|
       {{1, 1 + 1e-9, 3}, {0.5, 0.2, 1.0}, Regime::kAboutLargestAxis},  // nearly symmetric
       {{1, 2, 3}, {1e-6, 1.0, 1e-6}, Regime::kAboutLargestAxis},       // m1 ~ 1e-12
   };
@@ -340,8 +340,11 @@ TEST(TorqueFreeMotion, TrivialMotions) {
   // Spin about each principal axis (including the unstable one) and any axis of a sphere:
   // q(t) = q0 exp(t w / 2).
   const std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> spins = {
-      {kTHandle, {0, 0, 2}}, {kTHandle, {0, -1.5, 0}}, {kTHandle, {3, 0, 0}},
-      {{2, 2, 2}, {0.3, -0.4, 1.2}}, {{1, 2, 2}, {0, 0.6, 0.8}}};
+      {kTHandle, {0, 0, 2}},
+      {kTHandle, {0, -1.5, 0}},
+      {kTHandle, {3, 0, 0}},
+      {{2, 2, 2}, {0.3, -0.4, 1.2}},
+      {{1, 2, 2}, {0, 0.6, 0.8}}};
   for (const auto& [moments, w] : spins) {
     const TorqueFreeMotion spin(moments, kQ0, w);
     EXPECT_EQ(spin.regime(), Regime::kPermanentRotation) << moments.transpose();
@@ -374,7 +377,9 @@ TEST(TorqueFreeMotion, ExtremeScalesAreHandled) {
 
 TEST(TorqueFreeMotion, BadInput) {
   EXPECT_THAT(
-      [] { TorqueFreeMotion m({1.0, -2.0, 3.0}, kQ0, {1, 0, 0}); },
+      [] {
+        TorqueFreeMotion m({1.0, -2.0, 3.0}, kQ0, {1, 0, 0});
+      },
       ::testing::ThrowsMessage<std::invalid_argument>(::testing::HasSubstr("finite and positive")));
   EXPECT_THROW(TorqueFreeMotion({1.0, std::nan(""), 3.0}, kQ0, {1, 0, 0}), std::invalid_argument);
   // A non-finite state does not throw (step loops detect NaN instead).

@@ -16,10 +16,10 @@
 #include "gl_program.hpp"
 #include "gpu_mesh.hpp"
 #include "overlay_pass.hpp"
-#include "scene_passes.hpp"
 #include "render/offscreen_context.hpp"
 #include "render/renderer.hpp"
 #include "render_support.hpp"
+#include "scene_passes.hpp"
 
 namespace tumble::render::detail {
 namespace {
@@ -64,8 +64,8 @@ struct LiveObjects {
 
 void PrintTo(const LiveObjects& o, std::ostream* out) {
   *out << "{buffers " << o.buffers << ", vertex arrays " << o.vertex_arrays << ", textures "
-       << o.textures << ", framebuffers " << o.framebuffers << ", renderbuffers "
-       << o.renderbuffers << ", shaders " << o.shaders << ", programs " << o.programs << "}";
+       << o.textures << ", framebuffers " << o.framebuffers << ", renderbuffers " << o.renderbuffers
+       << ", shaders " << o.shaders << ", programs " << o.programs << "}";
 }
 
 constexpr const char* kVertex =

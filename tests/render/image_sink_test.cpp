@@ -91,7 +91,6 @@ TEST(ImageSink, UnfinishedPngSequenceLeavesNothing) {
   std::filesystem::remove_all(dir);
 }
 
-
 TEST(ImageSink, Mp4IsH264WithEveryFrameAndMatchesThePngs) {
   const auto dir = tumble::testing::fresh_directory("mp4_sink");
   const auto images = turning_box_frames();

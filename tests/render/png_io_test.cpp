@@ -23,20 +23,16 @@ TEST(PngIo, RoundTripsEveryByte) {
 }
 
 TEST(PngIo, ErrorsNameTheFile) {
-  EXPECT_THAT(
-      [] { read_png("/nonexistent/x.png"); },
-      ::testing::ThrowsMessage<InputError>(::testing::HasSubstr("/nonexistent/x.png")));
+  EXPECT_THAT([] { read_png("/nonexistent/x.png"); },
+              ::testing::ThrowsMessage<InputError>(::testing::HasSubstr("/nonexistent/x.png")));
   Image image{1, 1, {1, 2, 3, 4}};
-  EXPECT_THAT(
-      [&] { write_png("/nonexistent/y.png", image); },
-      ::testing::ThrowsMessage<InputError>(::testing::HasSubstr("/nonexistent/y.png")));
+  EXPECT_THAT([&] { write_png("/nonexistent/y.png", image); },
+              ::testing::ThrowsMessage<InputError>(::testing::HasSubstr("/nonexistent/y.png")));
 }
 
 TEST(PngIo, NotAPngIsBadInputAndAMalformedImageIsTheCallers) {
   const auto dir = tumble::testing::fresh_directory("png_io_errors");
-  {
-    std::ofstream(dir / "text.png") << "not a PNG at all\n";
-  }
+  { std::ofstream(dir / "text.png") << "not a PNG at all\n"; }
   EXPECT_THAT([&] { read_png(dir / "text.png"); },
               ::testing::ThrowsMessage<InputError>(::testing::AllOf(
                   ::testing::HasSubstr("cannot read PNG '" + (dir / "text.png").string() + "'"),

@@ -22,11 +22,11 @@
 namespace tumble::render {
 namespace {
 
-using tumble::testing::directory_entries;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 using ::testing::Not;
 using ::testing::ThrowsMessage;
+using tumble::testing::directory_entries;
 
 constexpr int kSide = 16;
 
@@ -150,9 +150,9 @@ TEST(SinkErrors, MissingFfmpegLeavesNoDescriptorOrProcess) {
   {
     const PathGuard path("/nonexistent");
     EXPECT_THAT([&] { open_image_sink(dir / "out.webm", small_options()); },
-                ThrowsMessage<InputError>(AllOf(
-                    HasSubstr("cannot write '" + (dir / "out.webm").string() + "'"),
-                    HasSubstr("ffmpeg not found on PATH"), Not(HasSubstr("\n")))));
+                ThrowsMessage<InputError>(
+                    AllOf(HasSubstr("cannot write '" + (dir / "out.webm").string() + "'"),
+                          HasSubstr("ffmpeg not found on PATH"), Not(HasSubstr("\n")))));
   }
   EXPECT_EQ(open_descriptors(), before);
   EXPECT_TRUE(no_child_process());
@@ -162,9 +162,9 @@ TEST(SinkErrors, MissingFfmpegLeavesNoDescriptorOrProcess) {
 
 TEST(SinkErrors, FfmpegThatCannotBeExecutedIsBadInputAndLeavesNothing) {
   // Not executable: posix_spawnp fails with EACCES (for root too: no execute bit at all).
-  const auto bin = fake_ffmpeg("ffmpeg_noexec", "exit 0\n",
-                               std::filesystem::perms::owner_read |
-                                   std::filesystem::perms::owner_write);
+  const auto bin =
+      fake_ffmpeg("ffmpeg_noexec", "exit 0\n",
+                  std::filesystem::perms::owner_read | std::filesystem::perms::owner_write);
   const auto dir = tumble::testing::fresh_directory("noexec_out");
   const std::vector<int> before = open_descriptors();
   {
@@ -224,9 +224,8 @@ TEST(SinkErrors, FinishedVideoLeavesNoDescriptorAndRefusesFrames) {
     sink->write(small_frame());
     sink->finish();
     EXPECT_THAT([&] { sink->write(small_frame()); },
-                ThrowsMessage<std::logic_error>(HasSubstr("video sink '" +
-                                                          (dir / "out.mp4").string() +
-                                                          "' is closed")));
+                ThrowsMessage<std::logic_error>(
+                    HasSubstr("video sink '" + (dir / "out.mp4").string() + "' is closed")));
     EXPECT_EQ(open_descriptors(), before);
     EXPECT_TRUE(no_child_process());
   }
@@ -278,9 +277,8 @@ TEST(SinkErrors, FileWhereTheFramesFolderShouldBeIsBadInput) {
   const auto dir = tumble::testing::fresh_directory("png_file");
   std::ofstream(dir / "frames") << "a file\n";
   EXPECT_THAT([&] { open_image_sink(dir / "frames/", small_options()); },
-              ThrowsMessage<InputError>(
-                  AllOf(HasSubstr("'" + (dir / "frames").string() + "'"),
-                        HasSubstr("it exists and is not a directory"))));
+              ThrowsMessage<InputError>(AllOf(HasSubstr("'" + (dir / "frames").string() + "'"),
+                                              HasSubstr("it exists and is not a directory"))));
   EXPECT_EQ(directory_entries(dir), std::vector<std::string>{"frames"});
   std::filesystem::remove_all(dir);
 }

@@ -15,7 +15,6 @@
 
 namespace tumble::testing {
 
-
 /// A needle (moments 0.001 : 1 : 1) spun fast about its axis with a wobble: with dt = 0.01,
 /// explicit Euler blows up at step 241 (t = 2.41 s), while stable integrators get through.
 inline nlohmann::json fast_needle_scene() {
@@ -30,14 +29,16 @@ inline nlohmann::json fast_needle_scene() {
 class CommandTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fresh_directory(::testing::UnitTest::GetInstance()->current_test_info()->test_suite_name());
+    dir_ =
+        fresh_directory(::testing::UnitTest::GetInstance()->current_test_info()->test_suite_name());
   }
   void TearDown() override { std::filesystem::remove_all(dir_); }
 
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
   /// Writes `scene` as JSON into the folder and returns its path.
-  std::string write_scene(const nlohmann::json& scene, const std::string& name = "scene.json") const {
+  std::string write_scene(const nlohmann::json& scene,
+                          const std::string& name = "scene.json") const {
     std::ofstream(dir_ / name) << scene.dump(2);
     return path(name);
   }

@@ -64,7 +64,9 @@ inline CommandResult run_command(const std::string& command) {
 }
 
 /// The `tumble` executable of this build.
-inline std::string tumble_executable() { return std::string(TUMBLE_BINARY_DIR) + "/app/tumble"; }
+inline std::string tumble_executable() {
+  return std::string(TUMBLE_BINARY_DIR) + "/app/tumble";
+}
 
 /// "codec,width,height,frames" of a video's first stream, as ffprobe counts them.
 inline std::string probe_video(const std::filesystem::path& file) {

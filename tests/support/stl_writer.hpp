@@ -49,9 +49,9 @@ std::string ascii_stl_solid(const std::string& name, std::size_t count, Triangle
   const auto append = [](std::string& text, const Eigen::Vector3d& v) {
     for (int axis = 0; axis < 3; ++axis) {
       char buffer[32];
-      const auto end = std::to_chars(buffer, buffer + sizeof buffer, v[axis],
-                                     std::chars_format::general, 17)
-                           .ptr;
+      const auto end =
+          std::to_chars(buffer, buffer + sizeof buffer, v[axis], std::chars_format::general, 17)
+              .ptr;
       text.append(" ").append(buffer, end);
     }
     text += "\n";

@@ -53,12 +53,34 @@ void ensure_written(std::ofstream& out, const std::filesystem::path& file) {
 }  // namespace
 
 const std::vector<std::string>& results_columns() {
-  static const std::vector<std::string> columns = {
-      "scene", "scene_file", "integrator", "order", "adaptive", "dt", "tolerance", "duration",
-      "steps", "total_steps", "blew_up", "blow_up_time", "blow_up_reason", "repeats",
-      "seconds_median", "seconds_min", "seconds_max", "ns_per_step", "core", "samples",
-      "orientation_error_final", "orientation_error_max", "omega_error_final", "omega_error_max",
-      "momentum_error_final", "momentum_error_max", "energy_drift_max", "momentum_norm_drift_max"};
+  static const std::vector<std::string> columns = {"scene",
+                                                   "scene_file",
+                                                   "integrator",
+                                                   "order",
+                                                   "adaptive",
+                                                   "dt",
+                                                   "tolerance",
+                                                   "duration",
+                                                   "steps",
+                                                   "total_steps",
+                                                   "blew_up",
+                                                   "blow_up_time",
+                                                   "blow_up_reason",
+                                                   "repeats",
+                                                   "seconds_median",
+                                                   "seconds_min",
+                                                   "seconds_max",
+                                                   "ns_per_step",
+                                                   "core",
+                                                   "samples",
+                                                   "orientation_error_final",
+                                                   "orientation_error_max",
+                                                   "omega_error_final",
+                                                   "omega_error_max",
+                                                   "momentum_error_final",
+                                                   "momentum_error_max",
+                                                   "energy_drift_max",
+                                                   "momentum_norm_drift_max"};
   return columns;
 }
 
@@ -85,9 +107,9 @@ void write_results_csv(const BenchOutcome& outcome, const std::filesystem::path&
         << number(r.steps ? 1e9 * r.median_seconds / static_cast<double>(r.steps) : 0.0) << ","
         << r.core << "," << r.errors.samples;
     const ErrorFigures& e = r.errors;
-    for (double value : {e.orientation_final, e.orientation_max, e.omega_final, e.omega_max,
-                         e.momentum_final, e.momentum_max, e.energy_drift_max,
-                         e.momentum_norm_drift_max}) {
+    for (double value :
+         {e.orientation_final, e.orientation_max, e.omega_final, e.omega_max, e.momentum_final,
+          e.momentum_max, e.energy_drift_max, e.momentum_norm_drift_max}) {
       out << "," << (blew_up ? "" : number(value));
     }
     out << "\n";
@@ -240,9 +262,9 @@ void runs_table(std::ostream& out, const BenchOutcome& outcome, std::size_t s) {
     }
     const ErrorFigures& e = r.errors;
     out << number(e.orientation_final, "%.2e") << " | " << number(e.orientation_max, "%.2e")
-        << " | " << number(e.omega_max, "%.2e") << " | " << number(e.momentum_max, "%.2e")
-        << " | " << number(e.energy_drift_max, "%.2e") << " | "
-        << number(e.momentum_norm_drift_max, "%.2e") << " |\n";
+        << " | " << number(e.omega_max, "%.2e") << " | " << number(e.momentum_max, "%.2e") << " | "
+        << number(e.energy_drift_max, "%.2e") << " | " << number(e.momentum_norm_drift_max, "%.2e")
+        << " |\n";
   }
 }
 
@@ -251,26 +273,27 @@ void observed_order_table(std::ostream& out, const BenchOutcome& outcome, std::s
   out << "\n### Observed order\n\nLeast-squares slope of log(final orientation error) against "
          "log(dt) (dopri: against log(tolerance)), over the runs with an error between "
       << number(kRoundingFloor, "%.0e") << " and " << number(kSaturation, "%.2g")
-      << " rad that did not blow up (when every run is above "
-      << number(kSaturation, "%.2g")
+      << " rad that did not blow up (when every run is above " << number(kSaturation, "%.2g")
       << " rad the integrator does not converge here, and all its runs are fitted). n/a: fewer "
          "than two runs left, e.g. an integrator exact for this problem (free-rotor without "
-         "torques) sits at the rounding floor.\n\n| integrator | nominal order | observed | runs used | "
+         "torques) sits at the rounding floor.\n\n| integrator | nominal order | observed | runs "
+         "used | "
          "runs dropped |\n|---|---:|---:|---:|---:|\n";
   for (const std::string& name : integrators_of(outcome, s)) {
     const auto it = std::find_if(outcome.cases.begin(), outcome.cases.end(),
                                  [&](const BenchCase& c) { return c.integrator == name; });
     const OrderFit fit = observed_order(outcome, s, name);
     out << "| " << name << " | " << it->order << (it->adaptive ? " (per tolerance: 1)" : "")
-        << " | " << (fit.slope ? number(*fit.slope, "%.2f") : "n/a") << " | " << fit.used
-        << " | " << fit.dropped << " |\n";
+        << " | " << (fit.slope ? number(*fit.slope, "%.2f") : "n/a") << " | " << fit.used << " | "
+        << fit.dropped << " |\n";
   }
 }
 
 /// The fastest run of scene `s` to reach each accuracy level.
 void fastest_table(std::ostream& out, const BenchOutcome& outcome, std::size_t s) {
   out << "\n### Fastest to each accuracy (final orientation error)\n\n"
-         "| accuracy (rad) | integrator | step | time (s) | error (rad) |\n|---|---|---|---:|---:|\n";
+         "| accuracy (rad) | integrator | step | time (s) | error (rad) "
+         "|\n|---|---|---|---:|---:|\n";
   for (double level : {1e-2, 1e-4, 1e-6, 1e-8, 1e-10}) {
     std::optional<std::size_t> best;
     for (std::size_t i = 0; i < outcome.cases.size(); ++i) {

@@ -27,7 +27,8 @@ std::vector<std::vector<ReferenceState>> grid_samples(const engine::ReferenceMot
   std::vector<std::vector<ReferenceState>> samples;
   for (const std::vector<engine::BodyState>& states : motion.sample(grid.interval, grid.duration)) {
     std::vector<ReferenceState> row;
-    for (std::size_t i = 0; i < bodies.size(); ++i) row.push_back(reference_state(bodies[i], states[i]));
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+      row.push_back(reference_state(bodies[i], states[i]));
     samples.push_back(std::move(row));
   }
   return samples;
@@ -95,8 +96,8 @@ void ErrorMeter::observe(std::size_t k, const std::vector<engine::BodyState>& st
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     const engine::BodyState& state = states[i];
     const ReferenceState& ref = row[i];
-    f.orientation_final =
-        std::max(f.orientation_final, engine::orientation_angle(ref.orientation, state.orientation));
+    f.orientation_final = std::max(f.orientation_final,
+                                   engine::orientation_angle(ref.orientation, state.orientation));
     f.omega_final = std::max(
         f.omega_final, relative_difference(engine::angular_velocity(bodies_[i], state), ref.omega));
     f.momentum_final =

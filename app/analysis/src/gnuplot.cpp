@@ -11,14 +11,18 @@
 namespace tumble::app {
 namespace {
 
-std::string quoted(const std::string& text) { return gnuplot_quoted(text); }
+std::string quoted(const std::string& text) {
+  return gnuplot_quoted(text);
+}
 
 /// The shell-quoted form of a path.
 std::string shell_quoted(const std::string& text) {
   std::string out = "'";
   for (char c : text) {
-    if (c == '\'') out += "'\\''";
-    else out += c;
+    if (c == '\'')
+      out += "'\\''";
+    else
+      out += c;
   }
   return out + "'";
 }
@@ -51,7 +55,9 @@ void plot_commands(std::ostream& script, const LogLogPlot& plot, std::size_t ind
 
 }  // namespace
 
-bool gnuplot_available() { return std::system("gnuplot --version >/dev/null 2>&1") == 0; }
+bool gnuplot_available() {
+  return std::system("gnuplot --version >/dev/null 2>&1") == 0;
+}
 
 std::string gnuplot_script(const std::vector<LogLogPlot>& plots) {
   std::ostringstream script;
@@ -85,8 +91,10 @@ std::string gnuplot_script(const std::vector<LogLogPlot>& plots) {
 std::string gnuplot_quoted(const std::string& text) {
   std::string out = "'";  // '' escapes a quote
   for (char c : text) {
-    if (c == '\'') out += "''";
-    else out += c;
+    if (c == '\'')
+      out += "''";
+    else
+      out += c;
   }
   return out + "'";
 }
@@ -98,8 +106,8 @@ void run_gnuplot(const std::string& script, const std::filesystem::path& script_
     out << script;
     if (!out.flush()) throw InputError("cannot write " + script_file.string());
   }
-  const std::string command = "gnuplot " + shell_quoted(script_file.string()) + " >" +
-                              shell_quoted(log.string()) + " 2>&1";
+  const std::string command =
+      "gnuplot " + shell_quoted(script_file.string()) + " >" + shell_quoted(log.string()) + " 2>&1";
   const int status = std::system(command.c_str());
   std::string first_line;
   {
@@ -110,10 +118,9 @@ void run_gnuplot(const std::string& script, const std::filesystem::path& script_
   std::filesystem::remove(script_file, ignored);
   std::filesystem::remove(log, ignored);
   if (status != 0) {
-    throw InputError("gnuplot failed" + (first_line.empty()
-                                                     ? " (status " + std::to_string(status) +
-                                                           "; is gnuplot installed?)"
-                                                     : ": " + first_line));
+    throw InputError("gnuplot failed" + (first_line.empty() ? " (status " + std::to_string(status) +
+                                                                  "; is gnuplot installed?)"
+                                                            : ": " + first_line));
   }
 }
 

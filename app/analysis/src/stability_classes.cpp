@@ -7,12 +7,18 @@ namespace tumble::app {
 
 const char* outcome_name(StabilityOutcome outcome) {
   switch (outcome) {
-    case StabilityOutcome::kStable: return "stable";
-    case StabilityOutcome::kDrifting: return "drifting";
-    case StabilityOutcome::kDamped: return "damped";
-    case StabilityOutcome::kBlewUp: return "blew up";
-    case StabilityOutcome::kUnchecked: return "unchecked";
-    case StabilityOutcome::kSkipped: return "skipped";
+    case StabilityOutcome::kStable:
+      return "stable";
+    case StabilityOutcome::kDrifting:
+      return "drifting";
+    case StabilityOutcome::kDamped:
+      return "damped";
+    case StabilityOutcome::kBlewUp:
+      return "blew up";
+    case StabilityOutcome::kUnchecked:
+      return "unchecked";
+    case StabilityOutcome::kSkipped:
+      return "skipped";
   }
   return "?";
 }

@@ -17,21 +17,29 @@ namespace {
 /// Cell colour per outcome, 0xRRGGBB.
 long colour(StabilityOutcome outcome) {
   switch (outcome) {
-    case StabilityOutcome::kStable: return 0x2ca02c;
-    case StabilityOutcome::kDrifting: return 0xffbf00;
-    case StabilityOutcome::kDamped: return 0x4a90d9;
-    case StabilityOutcome::kBlewUp: return 0xd62728;
-    case StabilityOutcome::kUnchecked: return 0xa0d0a0;
-    case StabilityOutcome::kSkipped: return 0xdddddd;
+    case StabilityOutcome::kStable:
+      return 0x2ca02c;
+    case StabilityOutcome::kDrifting:
+      return 0xffbf00;
+    case StabilityOutcome::kDamped:
+      return 0x4a90d9;
+    case StabilityOutcome::kBlewUp:
+      return 0xd62728;
+    case StabilityOutcome::kUnchecked:
+      return 0xa0d0a0;
+    case StabilityOutcome::kSkipped:
+      return 0xdddddd;
   }
   return 0xffffff;
 }
 
-constexpr StabilityOutcome kLegend[] = {StabilityOutcome::kStable, StabilityOutcome::kDrifting,
-                                        StabilityOutcome::kDamped, StabilityOutcome::kBlewUp,
+constexpr StabilityOutcome kLegend[] = {StabilityOutcome::kStable,    StabilityOutcome::kDrifting,
+                                        StabilityOutcome::kDamped,    StabilityOutcome::kBlewUp,
                                         StabilityOutcome::kUnchecked, StabilityOutcome::kSkipped};
 
-std::string quoted(const std::string& text) { return gnuplot_quoted(text); }
+std::string quoted(const std::string& text) {
+  return gnuplot_quoted(text);
+}
 
 std::string hex(long value) {
   char buffer[16];

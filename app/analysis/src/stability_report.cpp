@@ -117,11 +117,12 @@ void write_case_section(std::ostream& out, const StabilityCase& c,
                         const std::vector<engine::IntegratorInfo>& integrators,
                         const std::vector<StabilityRun>& runs, std::size_t& index) {
   // The case and what its columns show.
-  out << "## Case `" << c.name << "`\n\n" << c.description << ". Duration "
-      << printf_number(c.duration) << " s";
-  if (c.rate > 0.0) out << "; columns are " << c.rate_label << " (rate " << printf_number(c.rate)
-                        << " 1/s)";
-  else out << "; columns are dt in s";
+  out << "## Case `" << c.name << "`\n\n"
+      << c.description << ". Duration " << printf_number(c.duration) << " s";
+  if (c.rate > 0.0)
+    out << "; columns are " << c.rate_label << " (rate " << printf_number(c.rate) << " 1/s)";
+  else
+    out << "; columns are dt in s";
 
   // The matrix: one row per integrator, one column per dt.
   out << ".\n\n| integrator |";

@@ -124,8 +124,8 @@ void measure_end(const engine::Simulation& simulation, const StabilityReference&
     double orientation = 0.0, position = 0.0;
     for (std::size_t i = 0; i < simulation.states().size(); ++i) {
       const engine::BodyState& s = simulation.states()[i];
-      orientation = std::max(orientation, engine::orientation_angle(reference.states[i].orientation,
-                                                                    s.orientation));
+      orientation = std::max(
+          orientation, engine::orientation_angle(reference.states[i].orientation, s.orientation));
       position = std::max(position, (reference.states[i].position - s.position).norm());
     }
     run.orientation_error = orientation;

@@ -75,7 +75,8 @@ StabilityCase thin_disc(double duration, const std::vector<double>& rate_dts) {
 /// 0.5 m up the axis from a fixed pivot, spin 50 rad/s, tilted 0.3 rad, gravity 9.81.
 StabilityCase heavy_top(double duration, const std::vector<double>& rate_dts) {
   const double mass = 1.0, l = 0.5, g = 9.81, spin = 50.0, tilt = 0.3;
-  BodyModel top = free_body("heavy-top", Eigen::Vector3d(1.0 + mass * l * l, 1.0 + mass * l * l, 0.5));
+  BodyModel top =
+      free_body("heavy-top", Eigen::Vector3d(1.0 + mass * l * l, 1.0 + mass * l * l, 0.5));
   top.mass = mass;
   top.pivoted = true;
   top.center_offset = Eigen::Vector3d(0.0, 0.0, l);
@@ -86,8 +87,9 @@ StabilityCase heavy_top(double duration, const std::vector<double>& rate_dts) {
       "fast heavy symmetric top: I = (1, 1, 0.5) about the centre of mass 0.5 m above a pivot, "
       "spin 50 rad/s, tilted 0.3 rad, gravity";
   c.bodies = {top};
-  c.initial = {spinning_state(top, Eigen::Quaterniond(Eigen::AngleAxisd(tilt, Eigen::Vector3d::UnitX())),
-                        Eigen::Vector3d(0.0, 0.0, spin))};
+  c.initial = {spinning_state(top,
+                              Eigen::Quaterniond(Eigen::AngleAxisd(tilt, Eigen::Vector3d::UnitX())),
+                              Eigen::Vector3d(0.0, 0.0, spin))};
   c.duration = duration;
   c.rate_label = "w3 dt";
   c.rate = spin;
@@ -96,8 +98,9 @@ StabilityCase heavy_top(double duration, const std::vector<double>& rate_dts) {
   // and would hide every drift: energy changes are measured against m g l, the energy the top
   // trades between tilt, precession and nutation.
   c.energy_scale = mass * g * l;
-  c.note = "energy changes relative to m g l = 4.905 J (the spin energy I3 w3^2 / 2 = 625 J is "
-           "separately conserved and would hide every drift)";
+  c.note =
+      "energy changes relative to m g l = 4.905 J (the spin energy I3 w3^2 / 2 = 625 J is "
+      "separately conserved and would hide every drift)";
   return c;
 }
 
@@ -106,7 +109,8 @@ StabilityCase stiff_spring(double duration, const std::vector<double>& rate_dts)
   BodyModel bob = free_body("stiff-spring", Eigen::Vector3d::Constant(1e-3));
   bob.mass = 2.0;
   const double stiffness = 8.0;
-  bob.forces = {engine::Spring{Eigen::Vector3d(0.0, 0.0, 1.0), Eigen::Vector3d::Zero(), stiffness, 0.0}};
+  bob.forces = {
+      engine::Spring{Eigen::Vector3d(0.0, 0.0, 1.0), Eigen::Vector3d::Zero(), stiffness, 0.0}};
   BodyState start;
   start.position = Eigen::Vector3d(0.5, 0.0, 1.0);
   StabilityCase c;
@@ -120,8 +124,9 @@ StabilityCase stiff_spring(double duration, const std::vector<double>& rate_dts)
   c.dts = steps_for(c.rate, rate_dts);
   // Symplectic Euler's energy legitimately swings to 1 / (1 - wn dt / 2) = 20x at wn dt = 1.9.
   c.blowup_factor = 100.0;
-  c.note = "blow-up factor 100: below wn dt = 2 symplectic Euler's energy swings to "
-           "1 / (1 - wn dt / 2) times its initial value (20x at 1.9) and stays bounded";
+  c.note =
+      "blow-up factor 100: below wn dt = 2 symplectic Euler's energy swings to "
+      "1 / (1 - wn dt / 2) times its initial value (20x at 1.9) and stays bounded";
   return c;
 }
 
@@ -134,12 +139,12 @@ StabilityCase near_separatrix(double duration, const std::vector<double>& rate_d
 /// 1e6 steps of the cheap symplectic integrators only.
 StabilityCase long_run(double steps) {
   const double dt = 0.01;
-  StabilityCase c = spin_case("long-run", "body (1, 2, 3) tumbling at 1.08 rad/s for 1e6 steps",
-                              Eigen::Vector3d(1, 2, 3), Eigen::Vector3d(0.4, 0.8, 0.6),
-                              steps * dt, {});
+  StabilityCase c =
+      spin_case("long-run", "body (1, 2, 3) tumbling at 1.08 rad/s for 1e6 steps",
+                Eigen::Vector3d(1, 2, 3), Eigen::Vector3d(0.4, 0.8, 0.6), steps * dt, {});
   c.dts = {dt};
-  c.description = "body (1, 2, 3) tumbling at 1.08 rad/s for " + std::to_string(
-                      static_cast<long long>(steps)) + " steps";
+  c.description = "body (1, 2, 3) tumbling at 1.08 rad/s for " +
+                  std::to_string(static_cast<long long>(steps)) + " steps";
   c.only_integrators = {"splitting", "semi-implicit-euler"};
   c.skip_note = "long run: cheap integrators only";
   return c;
@@ -148,9 +153,10 @@ StabilityCase long_run(double steps) {
 /// A tumbling body 1e6 m from the origin, moving: rounding of the position must not leak into
 /// the rotation (and the straight-line motion must stay straight).
 StabilityCase far_from_origin(double duration, const std::vector<double>& rate_dts) {
-  StabilityCase c = spin_case(
-      "far-from-origin", "body (1, 2, 3) at x = 1e6 m moving at (3, -2, 1) m/s, tumbling at 5.4 rad/s",
-      Eigen::Vector3d(1, 2, 3), 5.0 * Eigen::Vector3d(0.4, 0.8, 0.6), duration, rate_dts);
+  StabilityCase c =
+      spin_case("far-from-origin",
+                "body (1, 2, 3) at x = 1e6 m moving at (3, -2, 1) m/s, tumbling at 5.4 rad/s",
+                Eigen::Vector3d(1, 2, 3), 5.0 * Eigen::Vector3d(0.4, 0.8, 0.6), duration, rate_dts);
   c.initial[0].position = Eigen::Vector3d(1e6, 0.0, 0.0);
   c.initial[0].velocity = Eigen::Vector3d(3.0, -2.0, 1.0);
   return c;
@@ -167,10 +173,10 @@ StabilitySuite standard_suite() {
 }
 
 StabilitySuite quick_suite() {
-  return {"quick",
-          "needle, heavy top and stiff spring with few steps (for tests)",
-          {needle(1.0, {0.5, 5.0}), heavy_top(1.0, {0.2, 0.5}),
-           stiff_spring(30.0, {1.5, 1.9, 2.1})}};
+  return {
+      "quick",
+      "needle, heavy top and stiff spring with few steps (for tests)",
+      {needle(1.0, {0.5, 5.0}), heavy_top(1.0, {0.2, 0.5}), stiff_spring(30.0, {1.5, 1.9, 2.1})}};
 }
 
 }  // namespace

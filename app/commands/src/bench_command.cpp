@@ -7,11 +7,11 @@
 
 #include <algorithm>
 #include <cctype>
-#include <functional>
-#include <iostream>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <functional>
+#include <iostream>
 #include <ostream>
 #include <set>
 #include <sstream>
@@ -21,13 +21,13 @@
 
 #include "app/commands/exit_status.hpp"
 
-#include "app/scene/scene.hpp"
 #include "app/analysis/bench_report.hpp"
 #include "app/analysis/bench_runner.hpp"
+#include "app/analysis/gnuplot.hpp"
+#include "app/scene/scene.hpp"
+#include "app/support/progress_bar.hpp"
 #include "engine/input_error.hpp"
 #include "engine/integrators.hpp"
-#include "app/analysis/gnuplot.hpp"
-#include "app/support/progress_bar.hpp"
 
 namespace tumble::app {
 namespace {
@@ -36,7 +36,6 @@ using engine::InputError;
 
 /// Adaptive runs are sampled about this many times (their output step caps their step size).
 constexpr std::size_t kAdaptiveSamples = 10;
-
 
 /// A whole number in [minimum, ...] or an error naming the option.
 long long parse_count(const std::string& text, const char* option, long long minimum) {
@@ -247,8 +246,7 @@ int bench(const BenchOptions& options, std::ostream& out, std::ostream& err) {
   // Everything the user typed is checked before any output is created, the cheap checks
   // before the scenes' meshes are read.
   BenchOutcome outcome;
-  outcome.repeat =
-      static_cast<int>(parse_count(options.repeat.value_or("3"), "--repeat", 1));
+  outcome.repeat = static_cast<int>(parse_count(options.repeat.value_or("3"), "--repeat", 1));
   const auto jobs = static_cast<std::size_t>(parse_count(options.jobs.value_or("1"), "--jobs", 1));
   if (!gnuplot_available()) throw InputError("gnuplot is not installed (needed for the plots)");
   plan(options, outcome.scenes, outcome.cases);

@@ -34,12 +34,12 @@
 
 #include "app/analysis/blow_up.hpp"
 #include "app/support/interrupt_guard.hpp"
+#include "app/support/progress_bar.hpp"
 #include "app/video/image_compositing.hpp"
 #include "engine/input_error.hpp"
 #include "engine/integrators.hpp"
 #include "engine/reference_motion.hpp"
 #include "engine/simulation.hpp"
-#include "app/support/progress_bar.hpp"
 #include "render/image_sink.hpp"
 #include "render/renderer.hpp"
 
@@ -68,7 +68,6 @@ constexpr Rgba kGhostColour{0.40f, 0.40f, 0.40f, 0.30f};
 /// Grey level of the gaps around and between the grid's tiles and of empty tiles.
 constexpr std::uint8_t kGapGrey = 24;
 constexpr int kMinTileSide = 16;
-
 
 /// One integrator's run: its plan and its render job.
 struct Run {
@@ -123,8 +122,7 @@ render::DrawList overlay_frame(const std::vector<Run>& runs, const Run& referenc
   render::OverlayPanel legend;
   legend.title = reference.plan.scene.name;
   legend.width_px = 300.0f;
-  legend.lines.push_back(
-      "t = " + printf_number(reference.job->simulation().time(), "%.3f") + " s");
+  legend.lines.push_back("t = " + printf_number(reference.job->simulation().time(), "%.3f") + " s");
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const NamedColour& colour = kRunPalette[i % kRunPalette.size()];
     for (render::MeshInstance mesh : runs[i].job->build().meshes) {
@@ -219,8 +217,8 @@ void start_jobs(const CompareOptions& options, const CompiledScene& compiled,
 
 /// The grid frame: each run's panel drawn with the first run's camera and copied into its
 /// tile, over the gap grey.
-void draw_grid_frame(const Comparison& comparison, render::Renderer& renderer,
-                     render::Image& tile, render::Image& frame) {
+void draw_grid_frame(const Comparison& comparison, render::Renderer& renderer, render::Image& tile,
+                     render::Image& frame) {
   const GridLayout& grid = comparison.grid;
   fill_grey(frame, comparison.frame_settings.width, comparison.frame_settings.height, kGapGrey);
   render::Camera camera;
@@ -280,8 +278,8 @@ int warn_blow_ups(const Comparison& comparison, std::ostream& err) {
   return status;
 }
 
-void print_summary(const CompareOptions& options, const Comparison& comparison,
-                   std::size_t frames, double seconds, std::ostream& out) {
+void print_summary(const CompareOptions& options, const Comparison& comparison, std::size_t frames,
+                   double seconds, std::ostream& out) {
   const GridLayout& grid = comparison.grid;
   out << "tumble compare: " << comparison.runs.size() << " integrators, " << frames
       << (frames == 1 ? " frame" : " frames") << " ("
@@ -340,7 +338,8 @@ CLI::App& add_compare_command(CLI::App& cli, CompareOptions& options) {
       "per integrator, same camera, each with its energy and |L| drift plots. overlay: every "
       "run in its own translucent colour over a grey ghost of the reference (exact for "
       "torque-free scenes, otherwise dopri at tolerance " +
-      printf_number(engine::kReferenceTolerance, "%g") + "). A run that blows up holds its "
+      printf_number(engine::kReferenceTolerance, "%g") +
+      "). A run that blows up holds its "
       "last good state and says when. Exit status: 0 done, 1 bad scene/option/output or ffmpeg "
       "failure, 3 some run blew up (the output is still complete), 130 interrupted (nothing "
       "written).");

@@ -16,15 +16,17 @@ namespace tumble::app {
 
 CLI::App& add_inspect_command(CLI::App& cli, InspectOptions& options) {
   CLI::App& inspect = *cli.add_subcommand(
-      "inspect", "Mass properties of meshes: volume, mass, centre of mass, inertia, principal axes");
+      "inspect",
+      "Mass properties of meshes: volume, mass, centre of mass, inertia, principal axes");
   inspect.add_option("MESH", options.files, "Mesh files (STL, OBJ, PLY, OFF, glTF, FBX, ...)")
       ->required();
   auto* density = inspect.add_option_function<double>(
       "--density", [&](double value) { options.mass.density = value; },
       "Density in kg/m^3 (default 1000, water)");
   inspect
-      .add_option_function<double>("--mass", [&](double value) { options.mass.mass = value; },
-                                   "Total mass in kg (the density follows)")
+      .add_option_function<double>(
+          "--mass", [&](double value) { options.mass.mass = value; },
+          "Total mass in kg (the density follows)")
       ->excludes(density);
   inspect.add_option("--scale", options.mass.scale,
                      "File units to metres, e.g. 0.001 for millimetres (default 1)");
@@ -59,7 +61,8 @@ int inspect(const InspectOptions& options, std::ostream& out, std::ostream& err)
     }
     return 0;
   }
-  for (std::size_t i = 0; i < reports.size(); ++i) out << (i ? "\n" : "") << format_report(reports[i]);
+  for (std::size_t i = 0; i < reports.size(); ++i)
+    out << (i ? "\n" : "") << format_report(reports[i]);
   return status;
 }
 

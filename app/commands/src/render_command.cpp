@@ -15,18 +15,16 @@
 
 #include "app/analysis/blow_up.hpp"
 #include "app/commands/exit_status.hpp"
-#include "command_line.hpp"
-#include "video_options_cli.hpp"
 #include "app/support/interrupt_guard.hpp"
 #include "app/support/printf_number.hpp"
 #include "app/support/progress_bar.hpp"
+#include "command_line.hpp"
 #include "engine/simulation.hpp"
 #include "render/image_sink.hpp"
+#include "video_options_cli.hpp"
 
 namespace tumble::app {
 namespace {
-
-
 
 int report_interrupted(const InterruptGuard& guard, const RenderOptions& options,
                        std::ostream& err) {
@@ -42,7 +40,8 @@ int render_scene(const RenderOptions& options, const InterruptGuard& guard, std:
 
   // Options and scene, then the output: both fail before any mesh is read.
   const RenderPlan plan = plan_render(options);
-  std::unique_ptr<render::ImageSink> sink = open_render_output(options, plan.settings, plan.frames.first);
+  std::unique_ptr<render::ImageSink> sink =
+      open_render_output(options, plan.settings, plan.frames.first);
 
   // Meshes, simulation, renderer.
   RenderJob job(plan);
@@ -74,8 +73,8 @@ int render_scene(const RenderOptions& options, const InterruptGuard& guard, std:
   int status = 0;
   if (simulation.blow_up()) {
     err << "tumble render: warning: blow-up: " << describe_blow_up(simulation)
-        << "; later frames hold the last good state (t = " << printf_number(simulation.time(), "%.9g")
-        << " s)\n";
+        << "; later frames hold the last good state (t = "
+        << printf_number(simulation.time(), "%.9g") << " s)\n";
     status = kExitBlowUp;
   }
   if (!options.quiet) {

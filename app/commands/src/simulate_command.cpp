@@ -10,13 +10,13 @@
 #include <CLI/CLI.hpp>
 
 #include "app/analysis/blow_up.hpp"
+#include "app/scene/scene.hpp"
 #include "app/support/csv_writer.hpp"
 #include "app/support/printf_number.hpp"
-#include "app/scene/scene.hpp"
 #include "engine/input_error.hpp"
 #include "engine/integrators.hpp"
-#include "engine/simulation.hpp"
 #include "engine/reference_motion.hpp"
+#include "engine/simulation.hpp"
 
 namespace tumble::app {
 namespace {
@@ -36,7 +36,8 @@ void apply_options(const SimulateOptions& options, SceneDescription& scene) {
   if (options.every < 1) {
     throw InputError("--every: expected a whole number >= 1, got " + std::to_string(options.every));
   }
-  if (options.blowup_factor && !(positive_option(*options.blowup_factor, "--blowup-factor") > 1.0)) {
+  if (options.blowup_factor &&
+      !(positive_option(*options.blowup_factor, "--blowup-factor") > 1.0)) {
     throw InputError("--blowup-factor: expected a growth factor > 1, got " +
                      printf_number(*options.blowup_factor, "%.17g"));
   }
@@ -112,8 +113,7 @@ int list_integrators(bool json, std::ostream& out) {
 
 /// The compiled scene as a simulation, with --blowup-factor over the scene's. Throws
 /// engine::InputError naming the scene file when the integrator cannot handle a body.
-engine::Simulation build_simulation(const SimulateOptions& options,
-                                    const SceneDescription& scene) {
+engine::Simulation build_simulation(const SimulateOptions& options, const SceneDescription& scene) {
   CompiledScene compiled = compile_scene(scene);
   engine::SimulationSettings settings = compiled.settings;
   if (options.blowup_factor) settings.blowup_factor = *options.blowup_factor;
@@ -293,8 +293,8 @@ nlohmann::json summary_to_json(const RunSummary& summary) {
 
 std::string format_summary(const RunSummary& summary) {
   std::ostringstream out;
-  out << summary.scene << ": " << summary.integrator << ", dt " << printf_number(summary.dt) << " s, "
-      << summary.steps << " of " << summary.total_steps
+  out << summary.scene << ": " << summary.integrator << ", dt " << printf_number(summary.dt)
+      << " s, " << summary.steps << " of " << summary.total_steps
       << " steps to t = " << printf_number(summary.time) << " s"
       << (summary.blow_up ? " (blew up)" : "") << "\n";
   const double rate =

@@ -52,7 +52,7 @@ std::vector<StabilityCase> gather_cases(const StabilityOptions& options, std::st
     if (options.cases) {
       for (const std::string& name : split_option_list(*options.cases, "--cases")) {
         const auto found = std::find_if(suite.cases.begin(), suite.cases.end(),
-                                         [&](const StabilityCase& c) { return c.name == name; });
+                                        [&](const StabilityCase& c) { return c.name == name; });
         if (found == suite.cases.end()) {
           std::string names;
           for (const StabilityCase& c : suite.cases) names += (names.empty() ? "" : ", ") + c.name;
@@ -96,7 +96,8 @@ std::vector<StabilityRun> run_sweep(const std::vector<StabilityCase>& cases,
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const StabilityCase& c = cases[k];
     err << "tumble stability: [" << k + 1 << "/" << cases.size() << "] " << c.name << ": "
-        << integrators.size() * c.dts.size() << " runs\n" << std::flush;
+        << integrators.size() * c.dts.size() << " runs\n"
+        << std::flush;
     const StabilityReference reference = stability_reference(c);
     for (const engine::IntegratorInfo& info : integrators) {
       for (const double dt : c.dts) runs.push_back(run_stability_case(c, info, dt, reference));
@@ -148,9 +149,10 @@ int stability(const StabilityOptions& options, std::ostream& out, std::ostream& 
 }  // namespace
 
 CLI::App& add_stability_command(CLI::App& cli, StabilityOptions& options) {
-  CLI::App& command = *cli.add_subcommand(
-      "stability", "Stiff and extreme cases over every integrator and a dt sweep: CSV, "
-                   "markdown matrices and a heat map");
+  CLI::App& command =
+      *cli.add_subcommand("stability",
+                          "Stiff and extreme cases over every integrator and a dt sweep: CSV, "
+                          "markdown matrices and a heat map");
   command.add_option_function<std::string>(
       "--suite", [&](const std::string& value) { options.suite = value; },
       "Built-in suite (default standard; see --list-suites)");
@@ -164,7 +166,8 @@ CLI::App& add_stability_command(CLI::App& cli, StabilityOptions& options) {
       "--cases", [&](const std::string& value) { options.cases = value; },
       "Comma-separated built-in cases of the suite (default: all)");
   command.add_option_function<std::vector<std::string>>(
-      "SCENE", [&](const std::vector<std::string>& values) {
+      "SCENE",
+      [&](const std::vector<std::string>& values) {
         for (const std::string& value : values) options.scenes.emplace_back(value);
       },
       "Scene files added as cases (alone: only they run, unless --suite or --cases is given)");

@@ -22,7 +22,9 @@ constexpr std::array<Rgba, 3> kPrincipalAxisColours = {
     {{1.00f, 0.55f, 0.55f, 1.0f}, {0.55f, 0.95f, 0.55f, 1.0f}, {0.55f, 0.65f, 1.00f, 1.0f}}};
 
 /// The thickness of a body's w arrow; L and the axes are drawn relative to it.
-float arrow_thickness(const BodyLook& look) { return static_cast<float>(0.045 * look.radius); }
+float arrow_thickness(const BodyLook& look) {
+  return static_cast<float>(0.045 * look.radius);
+}
 
 /// w and L from the rotation centre, at their fixed scales, each named at its tip when the
 /// overlay is on.

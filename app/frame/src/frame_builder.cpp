@@ -84,8 +84,7 @@ BodyLook body_look(const engine::BodyModel& body, const engine::BodyState& state
   const double omega_norm = omega.norm();
   const double momentum_norm = state.angular_momentum.norm();
   look.omega_scale = kOmegaArrowFraction * size / (omega_norm > 0.0 ? omega_norm : 1.0);
-  look.momentum_scale =
-      kMomentumArrowFraction * size / (momentum_norm > 0.0 ? momentum_norm : 1.0);
+  look.momentum_scale = kMomentumArrowFraction * size / (momentum_norm > 0.0 ? momentum_norm : 1.0);
   // Poinsot's ellipsoid through the tip of the w arrow: semi-axes s sqrt(2T / I_i). While it
   // is shown, the w scale s makes its longest semi-axis a little longer than the body.
   const double twice_kinetic = omega.dot(state.angular_momentum);
@@ -126,9 +125,8 @@ FrameBuilder::FrameBuilder(const SceneDescription& description, const CompiledSc
     const engine::TriangleMesh& geometry =
         body_geometry(body, i < scene.geometry.size() ? scene.geometry[i] : none, boxes[i]);
     geometries.push_back(&geometry);
-    impl.looks.push_back(
-        body_look(body, state, geometry, kBodyPalette[i % kBodyPalette.size()],
-                  settings.show.inertia_ellipsoid, renderer));
+    impl.looks.push_back(body_look(body, state, geometry, kBodyPalette[i % kBodyPalette.size()],
+                                   settings.show.inertia_ellipsoid, renderer));
   }
   impl.herpolhode.resize(scene.bodies.size());
   impl.polhode.resize(scene.bodies.size());
@@ -208,7 +206,9 @@ render::DrawList FrameBuilder::build(const engine::Simulation& simulation) const
   return build(simulation, impl_->settings.show);
 }
 
-double FrameBuilder::reach() const { return impl_->rig.reach; }
+double FrameBuilder::reach() const {
+  return impl_->rig.reach;
+}
 
 render::DrawList FrameBuilder::build(const engine::Simulation& simulation,
                                      const ShowSettings& show) const {

@@ -26,12 +26,12 @@ struct BodyLook {
   render::MeshId mesh;
   std::optional<render::MeshId> ellipsoid;
   render::Rgba colour;
-  double radius = 1.0;          ///< bounding radius of the drawn geometry about the COM, m
+  double radius = 1.0;       ///< bounding radius of the drawn geometry about the COM, m
   double omega_scale = 0.0;  ///< m of arrow per rad/s
   /// The w scale that puts the arrow's tip on the drawn inertia ellipsoid (used while it is
   /// shown; the plain scale when the body does not turn).
   double ellipsoid_omega_scale = 0.0;
-  double momentum_scale = 0.0;  ///< m of arrow per kg m^2/s
+  double momentum_scale = 0.0;                                ///< m of arrow per kg m^2/s
   Eigen::Vector3d ellipsoid_radii = Eigen::Vector3d::Zero();  ///< principal frame, m
 
   double omega_scale_for(const ShowSettings& show) const {

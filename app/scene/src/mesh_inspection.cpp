@@ -11,7 +11,9 @@
 namespace tumble::app {
 namespace {
 
-nlohmann::json vector_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+nlohmann::json vector_json(const Eigen::Vector3d& v) {
+  return {v.x(), v.y(), v.z()};
+}
 
 nlohmann::json matrix_json(const Eigen::Matrix3d& m) {
   nlohmann::json rows = nlohmann::json::array();
@@ -48,8 +50,8 @@ std::string with_thousands(std::size_t value) {
 
 }  // namespace
 
-engine::MeshReport inspect_file(const std::filesystem::path& file,
-                                const engine::MassOptions& mass, engine::TriangleMesh* imported) {
+engine::MeshReport inspect_file(const std::filesystem::path& file, const engine::MassOptions& mass,
+                                engine::TriangleMesh* imported) {
   engine::ImportStats stats;
   engine::TriangleMesh mesh = engine::import_mesh(file, &stats);
   if (imported != nullptr) *imported = mesh;
@@ -101,9 +103,10 @@ std::string format_report(const engine::MeshReport& report) {
         << "\n";
   };
   out << report.source << (report.shell ? "  (thin shell)" : "") << "\n";
-  row("triangles", with_thousands(report.triangles) + " in " + std::to_string(report.parts) +
-                       (report.parts == 1 ? " part" : " parts") +
-                       (report.cavities ? ", " + std::to_string(report.cavities) + " cavities" : ""));
+  row("triangles",
+      with_thousands(report.triangles) + " in " + std::to_string(report.parts) +
+          (report.parts == 1 ? " part" : " parts") +
+          (report.cavities ? ", " + std::to_string(report.cavities) + " cavities" : ""));
   row("vertices", with_thousands(report.vertices) + " (" + with_thousands(report.welded_vertices) +
                       " duplicates welded)");
   const Eigen::Vector3d size = report.bounds_max - report.bounds_min;
@@ -122,7 +125,8 @@ std::string format_report(const engine::MeshReport& report) {
   for (int r = 0; r < 3; ++r) {
     out << "                    " << vector_text(mp.inertia.row(r), moment) << "\n";
   }
-  row("principal moments", vector_text(report.principal.moments, moment) + " kg m^2 (I1 <= I2 <= I3)");
+  row("principal moments",
+      vector_text(report.principal.moments, moment) + " kg m^2 (I1 <= I2 <= I3)");
   out << "  principal axes (columns; a rotation from principal to file axes)\n";
   for (int r = 0; r < 3; ++r) {
     out << "                    " << vector_text(report.principal.axes.row(r), 1.0) << "\n";
@@ -134,7 +138,8 @@ std::string format_report(const engine::MeshReport& report) {
   if (!report.shell) {
     check(true, "closed surface (0 boundary edges)");
     check(true, "consistent winding");
-    check(!report.flipped, report.flipped ? "faces pointed inward: flipped" : "faces point outward");
+    check(!report.flipped,
+          report.flipped ? "faces pointed inward: flipped" : "faces point outward");
   } else {
     check(true, "thin shell: closure and winding not required (" +
                     with_thousands(report.boundary_edges) + " boundary edges)");

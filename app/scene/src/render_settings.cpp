@@ -19,7 +19,6 @@ namespace {
 using engine::InputError;
 using nlohmann::json;
 
-
 using Field = JsonField;
 
 /// The index of the body named by `field` (a string).
@@ -142,7 +141,8 @@ RenderSettings parse_render_settings(const nlohmann::json& render, const std::st
     }
   }
   if (auto scale = top.find("time_scale")) settings.time_scale = scale->positive();
-  if (auto samples = top.find("antialiasing")) settings.antialiasing = samples->integer(1, kMaxAntialiasing);
+  if (auto samples = top.find("antialiasing"))
+    settings.antialiasing = samples->integer(1, kMaxAntialiasing);
 
   // What is seen, and from where.
   if (auto camera = top.find("camera")) settings.camera = parse_camera(*camera, body_names);

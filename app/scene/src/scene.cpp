@@ -18,8 +18,8 @@
 #include "app/scene/strict_json.hpp"
 #include "app/support/text_file.hpp"
 #include "engine/input_error.hpp"
-#include "engine/mesh_import.hpp"
 #include "engine/integrators.hpp"
+#include "engine/mesh_import.hpp"
 #include "engine/principal_frame.hpp"
 
 namespace tumble::app {

@@ -90,8 +90,7 @@ engine::PrincipalFrame rotation_principal_frame(const Eigen::Matrix3d& inertia,
   const Eigen::Vector3d diagonal = inertia.diagonal();
   if (matter.mesh_principal && !pivoted) {
     frame = *matter.mesh_principal;
-  } else if (inertia.isDiagonal(0.0) && diagonal[0] <= diagonal[1] &&
-             diagonal[1] <= diagonal[2]) {
+  } else if (inertia.isDiagonal(0.0) && diagonal[0] <= diagonal[1] && diagonal[1] <= diagonal[2]) {
     frame.moments = diagonal;
     frame.axes.setIdentity();
   } else {
@@ -155,8 +154,7 @@ void compile_body(const SceneDescription& scene, std::size_t index, bool keep_ge
   const engine::PrincipalFrame frame =
       rotation_principal_frame(about_com.inertia_about(centre), matter, body.pivot.has_value());
   if (auto problem = engine::principal_moments_problem(frame.moments)) {
-    throw InputError(where + (body.pivot ? ".pivot: inertia about the pivot: " : ": ") +
-                     *problem);
+    throw InputError(where + (body.pivot ? ".pivot: inertia about the pivot: " : ": ") + *problem);
   }
   const Eigen::Matrix3d body_to_principal = frame.axes.transpose();
   model.moments = frame.moments;

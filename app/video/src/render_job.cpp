@@ -68,11 +68,14 @@ RenderJob::RenderJob(const RenderPlan& plan, render::Renderer& renderer)
 
 RenderJob::RenderJob(const RenderPlan& plan, const CompiledScene& compiled,
                      render::Renderer& renderer)
-    : impl_(std::make_unique<Impl>(plan, [&] {
-        CompiledScene copy = compiled;
-        copy.settings = simulation_settings(plan.scene);
-        return copy;
-      }(), &renderer)) {}
+    : impl_(std::make_unique<Impl>(
+          plan,
+          [&] {
+            CompiledScene copy = compiled;
+            copy.settings = simulation_settings(plan.scene);
+            return copy;
+          }(),
+          &renderer)) {}
 
 RenderJob::~RenderJob() = default;
 

@@ -56,7 +56,8 @@ RenderSettings render_settings(const RenderOptions& options, const SceneDescript
                        " frames per second, got " + printf_number(settings.fps));
     }
   }
-  if (options.time_scale) settings.time_scale = positive_option(*options.time_scale, "--time-scale");
+  if (options.time_scale)
+    settings.time_scale = positive_option(*options.time_scale, "--time-scale");
   if (options.antialiasing) {
     if (*options.antialiasing < 1 || *options.antialiasing > kMaxAntialiasing) {
       throw InputError("--aa: expected samples per pixel from 1 to " +
@@ -68,7 +69,6 @@ RenderSettings render_settings(const RenderOptions& options, const SceneDescript
   if (options.no_overlay) settings.show.overlay = false;
   return settings;
 }
-
 
 }  // namespace
 
@@ -139,9 +139,10 @@ RenderPlan plan_render(const RenderOptions& options) {
   const double frames = plan.scene.duration * plan.settings.fps / plan.settings.time_scale;
   if (!(frames < kMaxFrames)) {
     throw InputError(plan.scene.file.string() + ": a duration of " +
-                     printf_number(plan.scene.duration) + " s at " + printf_number(plan.settings.fps) +
-                     " fps and time scale " + printf_number(plan.settings.time_scale) +
-                     " makes more than " + printf_number(kMaxFrames) + " frames");
+                     printf_number(plan.scene.duration) + " s at " +
+                     printf_number(plan.settings.fps) + " fps and time scale " +
+                     printf_number(plan.settings.time_scale) + " makes more than " +
+                     printf_number(kMaxFrames) + " frames");
   }
   plan.total_frames = frame_count(plan.scene.duration, plan.settings.fps, plan.settings.time_scale);
   plan.frames = options.frames ? parse_frame_range(*options.frames, plan.total_frames)

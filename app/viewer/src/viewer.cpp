@@ -8,8 +8,8 @@
 
 #include "engine/input_error.hpp"
 #include "render/image_sink.hpp"
-#include "tumble/temporary_path.hpp"
 #include "render/png_io.hpp"
+#include "tumble/temporary_path.hpp"
 
 namespace tumble::app::viewer {
 namespace {

@@ -34,8 +34,8 @@ void omega_and_orientation(Viewer& viewer, std::size_t body, VectorFrame& omega_
   omega_frame = frame == 1 ? VectorFrame::kBody : VectorFrame::kWorld;
   ImGui::InputScalarN("w (rad/s)", ImGuiDataType_Double, omega_field.data(), 3, nullptr, nullptr,
                       "%.4g");
-  ImGui::InputScalarN("yaw pitch roll", ImGuiDataType_Double, ypr_field.data(), 3, nullptr,
-                      nullptr, "%.2f");
+  ImGui::InputScalarN("yaw pitch roll", ImGuiDataType_Double, ypr_field.data(), 3, nullptr, nullptr,
+                      "%.2f");
   if (!ImGui::Button("Apply (restart)##state")) return;
   const Session& session = viewer.session();
   const engine::BodyModel& model = session.compiled().bodies[body];

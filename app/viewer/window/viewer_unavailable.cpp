@@ -5,7 +5,9 @@
 
 namespace tumble::app {
 
-bool viewer_available() { return false; }
+bool viewer_available() {
+  return false;
+}
 
 int run_viewer_window(const ViewOptions&, std::ostream&, std::ostream& err) {
   err << "tumble view: this build has no viewer (install libsdl2-dev and configure with "

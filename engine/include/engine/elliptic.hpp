@@ -22,10 +22,10 @@ struct JacobiElliptic {
 
 /// A parameter m with its complement and both quarter periods, for repeated evaluations.
 struct EllipticParameter {
-  double m = 0.0;             ///< m = k^2
-  double m1 = 1.0;            ///< 1 - m
-  double quarter = 0.0;       ///< K(m), +inf at m = 1
-  double quarter_prime = 0.0; ///< K'(m) = K(1 - m), +inf at m = 0
+  double m = 0.0;              ///< m = k^2
+  double m1 = 1.0;             ///< 1 - m
+  double quarter = 0.0;        ///< K(m), +inf at m = 1
+  double quarter_prime = 0.0;  ///< K'(m) = K(1 - m), +inf at m = 0
 };
 /// Builds an EllipticParameter from m and an accurately known m1 = 1 - m.
 EllipticParameter elliptic_parameter(double m, double m1);

@@ -15,10 +15,10 @@ namespace tumble::engine {
 
 /// Integrals of 1, (x - r) and (x - r)(x - r)^T over a solid (or a surface, for shells).
 struct MomentIntegrals {
-  double measure = 0.0;                                     ///< volume (m^3) or area (m^2)
+  double measure = 0.0;           ///< volume (m^3) or area (m^2)
   double absolute_measure = 0.0;  ///< sum of |signed parts| of `measure`: its rounding scale
-  Eigen::Vector3d first = Eigen::Vector3d::Zero();          ///< integral of (x - r)
-  Eigen::Matrix3d second = Eigen::Matrix3d::Zero();         ///< integral of (x - r)(x - r)^T
+  Eigen::Vector3d first = Eigen::Vector3d::Zero();   ///< integral of (x - r)
+  Eigen::Matrix3d second = Eigen::Matrix3d::Zero();  ///< integral of (x - r)(x - r)^T
 };
 
 /// Volume integrals of the solid bounded by a closed, outward-wound mesh, about `reference`.
@@ -29,9 +29,9 @@ MomentIntegrals surface_integrals(const TriangleMesh& mesh, const Eigen::Vector3
 
 /// Mass, centre of mass and inertia tensor about the centre of mass.
 struct MassProperties {
-  double mass = 0.0;                                          ///< kg
+  double mass = 0.0;                                         ///< kg
   Eigen::Vector3d center_of_mass = Eigen::Vector3d::Zero();  ///< m
-  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();          ///< kg m^2, about the centre of mass
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();         ///< kg m^2, about the centre of mass
 
   /// The same body moved by `offset` (the inertia about the centre of mass is unchanged).
   MassProperties translated(const Eigen::Vector3d& offset) const;

@@ -31,22 +31,22 @@ struct MeshReport {
   std::size_t welded_vertices = 0;       ///< merged away by welding
   std::size_t degenerate_triangles = 0;  ///< skipped
   std::size_t parts = 0;
-  std::size_t cavities = 0;              ///< inward-facing parts inside another part
+  std::size_t cavities = 0;  ///< inward-facing parts inside another part
   std::size_t boundary_edges = 0;
   std::size_t inconsistent_edges = 0;
   std::size_t non_manifold_edges = 0;
   bool watertight = false;
   bool shell = false;
-  bool flipped = false;                  ///< all faces were inverted and have been flipped
-  double thickness = 0.0;                ///< m (shell mode)
-  double volume = 0.0;                   ///< m^3 (shell mode: area times thickness)
-  double area = 0.0;                     ///< m^2 (shell mode only)
-  double density = 0.0;                  ///< kg/m^3
-  MassProperties mass_properties;        ///< inertia about the centre of mass, file axes
+  bool flipped = false;            ///< all faces were inverted and have been flipped
+  double thickness = 0.0;          ///< m (shell mode)
+  double volume = 0.0;             ///< m^3 (shell mode: area times thickness)
+  double area = 0.0;               ///< m^2 (shell mode only)
+  double density = 0.0;            ///< kg/m^3
+  MassProperties mass_properties;  ///< inertia about the centre of mass, file axes
   PrincipalFrame principal;
   Eigen::Vector3d bounds_min = Eigen::Vector3d::Zero();
   Eigen::Vector3d bounds_max = Eigen::Vector3d::Zero();
-  std::vector<std::string> warnings;     ///< things the user should know and may want to fix
+  std::vector<std::string> warnings;  ///< things the user should know and may want to fix
 };
 
 /// Validates options, scales, welds, checks and integrates `mesh`. Throws InputError with a

@@ -28,8 +28,8 @@ struct Gravity {
 
 /// A constant torque (not conservative: energy and |L| are not invariants with it).
 struct ConstantTorque {
-  Eigen::Vector3d torque;  ///< N m
-  bool body_frame = false; ///< true: fixed in the body (principal frame); false: in the world
+  Eigen::Vector3d torque;   ///< N m
+  bool body_frame = false;  ///< true: fixed in the body (principal frame); false: in the world
 };
 
 /// A linear spring-damper from a world anchor to a body point.
@@ -45,13 +45,14 @@ using ForceTerm = std::variant<Gravity, ConstantTorque, Spring>;
 /// The constant properties of one body.
 struct BodyModel {
   std::string name;
-  double mass = 1.0;                                         ///< kg
-  Eigen::Vector3d moments = Eigen::Vector3d::Ones();         ///< principal, about the rotation centre
+  double mass = 1.0;                                  ///< kg
+  Eigen::Vector3d moments = Eigen::Vector3d::Ones();  ///< principal, about the rotation centre
   Eigen::Quaterniond principal_to_body = Eigen::Quaterniond::Identity();
   bool pivoted = false;
-  Eigen::Vector3d pivot = Eigen::Vector3d::Zero();           ///< world position of the pivot
-  Eigen::Vector3d center_offset = Eigen::Vector3d::Zero();   ///< centre of mass minus rotation centre, principal frame
-  std::vector<ForceTerm> forces;                             ///< only the terms the scene asks for
+  Eigen::Vector3d pivot = Eigen::Vector3d::Zero();  ///< world position of the pivot
+  Eigen::Vector3d center_offset =
+      Eigen::Vector3d::Zero();    ///< centre of mass minus rotation centre, principal frame
+  std::vector<ForceTerm> forces;  ///< only the terms the scene asks for
 
   /// True when nothing exerts a torque about the rotation centre (the exact solution applies).
   bool torque_free() const;
@@ -61,10 +62,10 @@ struct BodyModel {
 
 /// The evolving state of one body.
 struct BodyState {
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();           ///< centre of mass, world
-  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();           ///< of the centre of mass
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();               ///< centre of mass, world
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();               ///< of the centre of mass
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  ///< principal frame to world
-  Eigen::Vector3d angular_momentum = Eigen::Vector3d::Zero();   ///< world, about the rotation centre
+  Eigen::Vector3d angular_momentum = Eigen::Vector3d::Zero();  ///< world, about the rotation centre
 
   bool finite() const;
 };
@@ -132,8 +133,9 @@ struct HalfAngle {
 inline HalfAngle half_angle(double x_squared) {
   if (x_squared < 0.0025) {
     const double y = x_squared;
-    return {1.0 - y / 2.0 * (1.0 - y / 12.0 * (1.0 - y / 30.0 * (1.0 - y / 56.0 * (1.0 - y / 90.0)))),
-            1.0 - y / 6.0 * (1.0 - y / 20.0 * (1.0 - y / 42.0 * (1.0 - y / 72.0)))};
+    return {
+        1.0 - y / 2.0 * (1.0 - y / 12.0 * (1.0 - y / 30.0 * (1.0 - y / 56.0 * (1.0 - y / 90.0)))),
+        1.0 - y / 6.0 * (1.0 - y / 20.0 * (1.0 - y / 42.0 * (1.0 - y / 72.0)))};
   }
   const double x = std::sqrt(x_squared);
   return {std::cos(x), std::sin(x) / x};

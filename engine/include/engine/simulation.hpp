@@ -14,18 +14,18 @@ namespace tumble::engine {
 
 struct SimulationSettings {
   IntegratorKind integrator = IntegratorKind::kRk4;
-  double dt = 1e-3;              ///< s
-  double duration = 1.0;         ///< s
-  double tolerance = 1e-10;      ///< for adaptive integrators
-  double blowup_factor = 10.0;   ///< energy or |L| growth that counts as a blow-up
+  double dt = 1e-3;             ///< s
+  double duration = 1.0;        ///< s
+  double tolerance = 1e-10;     ///< for adaptive integrators
+  double blowup_factor = 10.0;  ///< energy or |L| growth that counts as a blow-up
 };
 
 /// Where and why a run blew up.
 struct BlowUp {
   std::size_t body = 0;
-  std::size_t step = 0;   ///< the step that produced the bad state (1-based)
-  double time = 0.0;      ///< simulation time after that step
-  std::string reason;     ///< e.g. "non-finite state", "energy grew 12.5x"
+  std::size_t step = 0;  ///< the step that produced the bad state (1-based)
+  double time = 0.0;     ///< simulation time after that step
+  std::string reason;    ///< e.g. "non-finite state", "energy grew 12.5x"
 };
 
 /// A run of several independent bodies with one integrator and a fixed output step dt.

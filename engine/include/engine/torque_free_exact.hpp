@@ -16,12 +16,12 @@ class TorqueFreeMotion {
  public:
   /// How the body moves, from the initial angular velocity.
   enum class Regime {
-    kAtRest,              ///< omega = 0
-    kPermanentRotation,   ///< omega along a principal axis (or any axis of a sphere)
-    kAboutLargestAxis,    ///< G^2 > 2 T I2: omega circles the axis of the largest moment
-    kAboutSmallestAxis,   ///< G^2 < 2 T I2: omega circles the axis of the smallest moment
-    kSeparatrix,          ///< G^2 = 2 T I2 exactly (to rounding): one heteroclinic excursion
-    kInvalid,             ///< non-finite angular velocity or orientation: every state is NaN
+    kAtRest,             ///< omega = 0
+    kPermanentRotation,  ///< omega along a principal axis (or any axis of a sphere)
+    kAboutLargestAxis,   ///< G^2 > 2 T I2: omega circles the axis of the largest moment
+    kAboutSmallestAxis,  ///< G^2 < 2 T I2: omega circles the axis of the smallest moment
+    kSeparatrix,         ///< G^2 = 2 T I2 exactly (to rounding): one heteroclinic excursion
+    kInvalid,            ///< non-finite angular velocity or orientation: every state is NaN
   };
 
   /// A state of the body.
@@ -104,10 +104,10 @@ class TorqueFreeMotion {
   double m_ = 0.0;
   double m1_ = 1.0;
   EllipticParameter parameter_;
-  double k_ = 0.0;             // K(m), +inf on the separatrix
-  double n_ = 0.0;             // characteristic of the third-kind integral (<= 0)
-  double g_ = 0.0;             // |L| (internal units)
-  double c_ = 0.0;             // G (J3 - J1) / (J1 J3)
+  double k_ = 0.0;  // K(m), +inf on the separatrix
+  double n_ = 0.0;  // characteristic of the third-kind integral (<= 0)
+  double g_ = 0.0;  // |L| (internal units)
+  double c_ = 0.0;  // G (J3 - J1) / (J1 J3)
   double u0_ = 0.0;
   double phi_half_ = 0.0;      // precession over one half period (2K in u)
   double phi_half_mod_ = 0.0;  // the same reduced to (-2 pi, 2 pi]

@@ -34,7 +34,8 @@ BenchOutcome two_scenes() {
 
 TEST(ObservedOrder, ExactPowerLawGivesItsExponent) {
   BenchOutcome outcome = two_scenes();
-  for (const double dt : {0.1, 0.05, 0.025, 0.0125}) add_run(outcome, 0, "rk4", dt, 3.0 * std::pow(dt, 4));
+  for (const double dt : {0.1, 0.05, 0.025, 0.0125})
+    add_run(outcome, 0, "rk4", dt, 3.0 * std::pow(dt, 4));
   const OrderFit fit = observed_order(outcome, 0, "rk4");
   ASSERT_TRUE(fit.slope.has_value());
   EXPECT_NEAR(*fit.slope, 4.0, 1e-12);
@@ -69,7 +70,7 @@ TEST(ObservedOrder, OnlyTheRunsOfThatIntegratorOnThatScene) {
 TEST(ObservedOrder, BlowUpsRoundingFloorAndSaturationAreDropped) {
   BenchOutcome outcome = two_scenes();
   add_run(outcome, 0, "rk4", 0.4, 0.1, std::nullopt, /*blew_up=*/true);
-  add_run(outcome, 0, "rk4", 0.2, kSaturation);      // saturated: not below 0.5
+  add_run(outcome, 0, "rk4", 0.2, kSaturation);  // saturated: not below 0.5
   add_run(outcome, 0, "rk4", 0.1, 1e-4);
   add_run(outcome, 0, "rk4", 0.05, 1e-4 / 16);
   add_run(outcome, 0, "rk4", 0.001, kRoundingFloor);  // at the floor: not above it

@@ -146,8 +146,8 @@ TEST(ErrorMeter, InvariantDriftsAreRelativeToTheInitialValues) {
   reference.samples = {{reference_at(Eigen::Quaterniond::Identity(), {0, 0, 2}, {0, 0, 2})}};
   ErrorMeter meter(bodies, {initial}, reference);
   meter.observe(1, {state_with(Eigen::Quaterniond::Identity(), {0, 0, 3})});  // E = 4.5
-  EXPECT_DOUBLE_EQ(meter.figures().energy_drift_max, 1.25);        // |4.5 - 2| / 2
-  EXPECT_DOUBLE_EQ(meter.figures().momentum_norm_drift_max, 0.5);  // |3 - 2| / 2
+  EXPECT_DOUBLE_EQ(meter.figures().energy_drift_max, 1.25);                   // |4.5 - 2| / 2
+  EXPECT_DOUBLE_EQ(meter.figures().momentum_norm_drift_max, 0.5);             // |3 - 2| / 2
   EXPECT_DOUBLE_EQ(meter.figures().momentum_final, 0.5);
 }
 
@@ -170,7 +170,8 @@ TEST(ErrorMeter, FinalIsTheLastSampleAndMaxTheLargestOverTheRun) {
   const BodyState initial = state_with(Eigen::Quaterniond::Identity(), {1, 0, 0});
   Reference reference;
   for (int k = 0; k < 3; ++k) {
-    reference.samples.push_back({reference_at(Eigen::Quaterniond::Identity(), {1, 0, 0}, {1, 0, 0})});
+    reference.samples.push_back(
+        {reference_at(Eigen::Quaterniond::Identity(), {1, 0, 0}, {1, 0, 0})});
   }
   ErrorMeter meter(bodies, {initial}, reference);
   meter.observe(1, {state_with(turn(0.1, {0, 0, 1}), {1, 0, 0})});

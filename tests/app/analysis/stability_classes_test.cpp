@@ -41,7 +41,9 @@ TEST(OutcomeName, AsWrittenInTheOutputs) {
   EXPECT_STREQ(outcome_name(StabilityOutcome::kSkipped), "skipped");
 }
 
-TEST(Classify, TheDefaultThresholdIsOnePerMille) { EXPECT_EQ(kStabilityDriftThreshold, 1e-3); }
+TEST(Classify, TheDefaultThresholdIsOnePerMille) {
+  EXPECT_EQ(kStabilityDriftThreshold, 1e-3);
+}
 
 TEST(Classify, Rule1ABlowUpWinsOverEverything) {
   EXPECT_EQ(classify(true, energy_only(), kT), StabilityOutcome::kBlewUp);

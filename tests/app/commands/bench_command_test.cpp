@@ -44,10 +44,10 @@ json torque_free_scene() {
 }
 
 /// The integrators under test with their nominal orders (dopri swept by tolerance apart).
-const std::map<std::string, double> kOrders = {
-    {"explicit-euler", 1},  {"semi-implicit-euler", 1}, {"implicit-euler", 1},
-    {"midpoint", 2},        {"splitting", 2},           {"rk4", 4},
-    {"splitting4", 4},      {"seed-semi-implicit", 0}};
+const std::map<std::string, double> kOrders = {{"explicit-euler", 1}, {"semi-implicit-euler", 1},
+                                               {"implicit-euler", 1}, {"midpoint", 2},
+                                               {"splitting", 2},      {"rk4", 4},
+                                               {"splitting4", 4},     {"seed-semi-implicit", 0}};
 
 class BenchCommand : public ::testing::Test {
  protected:
@@ -117,14 +117,34 @@ TEST_F(BenchCommand, MeasuredOrdersMatchTheIntegrators) {
 TEST_F(BenchCommand, CsvHasEveryColumnAndOneRowPerRun) {
   ASSERT_EQ(result_.status, 0) << result_.err;
   const Csv csv = read_csv(out() / "results.csv");
-  EXPECT_EQ(csv.header,
-            (std::vector<std::string>{
-                "scene", "scene_file", "integrator", "order", "adaptive", "dt", "tolerance",
-                "duration", "steps", "total_steps", "blew_up", "blow_up_time", "blow_up_reason",
-                "repeats", "seconds_median", "seconds_min", "seconds_max", "ns_per_step", "core",
-                "samples", "orientation_error_final", "orientation_error_max",
-                "omega_error_final", "omega_error_max", "momentum_error_final",
-                "momentum_error_max", "energy_drift_max", "momentum_norm_drift_max"}));
+  EXPECT_EQ(csv.header, (std::vector<std::string>{"scene",
+                                                  "scene_file",
+                                                  "integrator",
+                                                  "order",
+                                                  "adaptive",
+                                                  "dt",
+                                                  "tolerance",
+                                                  "duration",
+                                                  "steps",
+                                                  "total_steps",
+                                                  "blew_up",
+                                                  "blow_up_time",
+                                                  "blow_up_reason",
+                                                  "repeats",
+                                                  "seconds_median",
+                                                  "seconds_min",
+                                                  "seconds_max",
+                                                  "ns_per_step",
+                                                  "core",
+                                                  "samples",
+                                                  "orientation_error_final",
+                                                  "orientation_error_max",
+                                                  "omega_error_final",
+                                                  "omega_error_max",
+                                                  "momentum_error_final",
+                                                  "momentum_error_max",
+                                                  "energy_drift_max",
+                                                  "momentum_norm_drift_max"}));
   // Nine fixed-step integrators at five steps, dopri at three tolerances.
   ASSERT_EQ(csv.rows.size(), 9u * 5u + 3u);
   std::set<std::string> dts;
@@ -174,8 +194,8 @@ TEST_F(BenchCommand, ErrorsFallAsTheStepFalls) {
 
 TEST_F(BenchCommand, PlotsAreValidPngAndSvg) {
   ASSERT_EQ(result_.status, 0) << result_.err;
-  for (const char* measure : {"orientation_final", "orientation_max", "omega_max",
-                              "momentum_max", "energy_drift", "momentum_norm_drift"}) {
+  for (const char* measure : {"orientation_final", "orientation_max", "omega_max", "momentum_max",
+                              "energy_drift", "momentum_norm_drift"}) {
     const std::string stem = std::string("brick_") + measure;
     const std::string png = read_text(out() / (stem + ".png"));
     ASSERT_GT(png.size(), 1000u) << stem;
@@ -205,8 +225,9 @@ TEST_F(BenchCommand, ReportNamesEveryIntegratorTheCoresAndTheFastest) {
 
 TEST_F(BenchCommand, TwoJobsGiveTheSameErrorsAsOne) {
   const auto dir = fresh_directory("bench_jobs");
-  const std::string common = " --integrators rk4,splitting,dopri --dts 0.04,0.02 "
-                             "--tolerances 1e-6 --repeat 1 --duration 2 -o ";
+  const std::string common =
+      " --integrators rk4,splitting,dopri --dts 0.04,0.02 "
+      "--tolerances 1e-6 --repeat 1 --duration 2 -o ";
   const auto one = bench(scene() + common + "'" + (dir / "one").string() + "' --jobs 1");
   const auto two = bench(scene() + common + "'" + (dir / "two").string() + "' --jobs 2");
   ASSERT_EQ(one.status, 0) << one.err;

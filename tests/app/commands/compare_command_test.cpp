@@ -20,9 +20,9 @@
 #include "render/png_io.hpp"
 #include "support/command_test.hpp"
 #include "support/image_compare.hpp"
+#include "support/input_error.hpp"
 #include "support/run_command.hpp"
 #include "support/scene_builder.hpp"
-#include "support/input_error.hpp"
 
 namespace tumble::app {
 namespace {
@@ -41,10 +41,10 @@ json tumbling_scene() {
       .name("compare tumble")
       .duration(3.0)
       .dt(0.01)
-      .body(testing::BodyBuilder("brick").principal({2, 3, 4}).angular_velocity({0.2, 5.0, 0.2}, "body"))
+      .body(testing::BodyBuilder("brick").principal({2, 3, 4}).angular_velocity({0.2, 5.0, 0.2},
+                                                                                "body"))
       .json();
 }
-
 
 /// The w x h block of `image` whose top-left corner is (x, y).
 render::Image crop(const render::Image& image, int x, int y, int w, int h) {
@@ -63,7 +63,6 @@ class CompareCommand : public testing::CommandTest {
   static testing::CommandResult compare(const std::string& arguments) {
     return run_command(tumble_executable() + " compare " + arguments);
   }
-
 
   /// Names in the test folder other than the scene files.
   std::vector<std::string> outputs() const {
@@ -152,9 +151,10 @@ TEST_F(CompareCommand, GridTilesDifferWhereTheIntegratorsDo) {
 TEST_F(CompareCommand, OverlayShowsEachRunInItsColourOverTheGhost) {
   // Explicit Euler and seed-semi-implicit at a large step both leave the exact solution.
   const std::string scene = write_scene(tumbling_scene());
-  const auto result =
-      compare(scene + " --integrators explicit-euler,seed-semi-implicit --dt 0.1 --layout "
-                      "overlay -o '" + path("frames") + "/' --size 640x360 --frames 90: -q");
+  const auto result = compare(scene +
+                              " --integrators explicit-euler,seed-semi-implicit --dt 0.1 --layout "
+                              "overlay -o '" +
+                              path("frames") + "/' --size 640x360 --frames 90: -q");
   ASSERT_EQ(result.status, 0) << result.err;
   const render::Image frame = render::read_png(dir_ / "frames" / "frame_000090.png");
   ASSERT_EQ(frame.width, 640);
@@ -217,8 +217,7 @@ TEST_F(CompareCommand, ErrorsAreOneLineWithStatusOneAndLeaveNothing) {
   expect_error(scene + " --integrators rk4,exact,rk4" + out, "'rk4' is given twice");
   expect_error(scene + " --integrators rk4,exact --layout stacked" + out,
                "--layout: expected grid or overlay, got \"stacked\"");
-  expect_error(scene + " --integrators rk4,exact -o '" + path("missing/out.mp4") + "'",
-               "missing");
+  expect_error(scene + " --integrators rk4,exact -o '" + path("missing/out.mp4") + "'", "missing");
   expect_error(scene + " --integrators rk4,exact --dt -1" + out, "--dt");
 }
 

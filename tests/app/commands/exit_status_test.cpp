@@ -41,9 +41,8 @@ TEST(RunGuarded, PassesTheBodysStatusThroughAndSaysNothing) {
 
 TEST(RunGuarded, BadInputIsOneLineAndStatusOne) {
   std::ostringstream err;
-  const int status = run_guarded("inspect", err, []() -> int {
-    throw tumble::InputError("part.stl: the surface is open");
-  });
+  const int status = run_guarded(
+      "inspect", err, []() -> int { throw tumble::InputError("part.stl: the surface is open"); });
   EXPECT_EQ(status, kExitInputError);
   EXPECT_EQ(err.str(), "tumble inspect: error: part.stl: the surface is open\n");
 }
@@ -71,7 +70,9 @@ TEST(RunGuarded, AClaimOnTheFailureWinsAndOnlyOnFailure) {
     err << "tumble render: interrupted by SIGINT\n";
     return kExitInterrupted;
   };
-  EXPECT_EQ(run_guarded("render", err, [] { return 0; }, interrupted), 0);
+  EXPECT_EQ(run_guarded(
+                "render", err, [] { return 0; }, interrupted),
+            0);
   EXPECT_EQ(claims, 0);
   const int status = run_guarded(
       "render", err, []() -> int { throw tumble::InputError("ffmpeg failed"); }, interrupted);
@@ -144,12 +145,13 @@ TEST_F(CommandExitStatus, UnparsableValuesAreOneLineAndStatusOne) {
   expect_bad_input("simulate " + scene_ + " --every nan", "tumble simulate: error: ", "--every");
   expect_bad_input("render " + scene_ + " -o " + out("a.mp4") + " --aa 4.5",
                    "tumble render: error: ", "--aa");
-  expect_bad_input("compare " + scene_ + " --integrators rk4,splitting -o " + out("a.mp4") + " --fps x",
-                   "tumble compare: error: ", "--fps");
-  expect_bad_input("bench " + scene_ + " -o " + out("b") + " --repeat x", "tumble bench: error: ",
-                   "--repeat");
-  expect_bad_input("stability -o " + out("s") + " --dts 0.1,abc", "tumble stability: error: ",
-                   "--dts");
+  expect_bad_input(
+      "compare " + scene_ + " --integrators rk4,splitting -o " + out("a.mp4") + " --fps x",
+      "tumble compare: error: ", "--fps");
+  expect_bad_input("bench " + scene_ + " -o " + out("b") + " --repeat x",
+                   "tumble bench: error: ", "--repeat");
+  expect_bad_input("stability -o " + out("s") + " --dts 0.1,abc",
+                   "tumble stability: error: ", "--dts");
   expect_bad_input("view --dt abc", "tumble view: error: ", "--dt");
 }
 
@@ -161,8 +163,8 @@ TEST_F(CommandExitStatus, MissingInputFilesAreOneLineNamingTheFile) {
   expect_bad_input("compare " + missing + " --integrators rk4,splitting -o " + out("a.mp4"),
                    "tumble compare: error: ", missing);
   expect_bad_input("bench " + missing + " -o " + out("b"), "tumble bench: error: ", missing);
-  expect_bad_input("stability " + missing + " -o " + out("s"), "tumble stability: error: ",
-                   missing);
+  expect_bad_input("stability " + missing + " -o " + out("s"),
+                   "tumble stability: error: ", missing);
   // Nothing was written for any of them.
   EXPECT_EQ(tumble::testing::directory_entries(dir_), std::vector<std::string>{"scene.json"});
 }
@@ -189,8 +191,8 @@ TEST_F(CommandExitStatus, TheCommandsThatDrawNothingLoadNoGraphicsOrWindowLibrar
   // `tumble` itself: what it needs at start-up, read from its dynamic section.
   const auto needed = run_command("ldd " + tumble_executable());
   ASSERT_EQ(needed.status, 0) << needed.err;
-  for (const char* library : {"libOSMesa", "libGL", "libLLVM", "libSDL2", "libpulse", "libX11",
-                              "libpng", "libimgui"}) {
+  for (const char* library :
+       {"libOSMesa", "libGL", "libLLVM", "libSDL2", "libpulse", "libX11", "libpng", "libimgui"}) {
     EXPECT_THAT(needed.out, ::testing::Not(HasSubstr(library))) << library;
   }
   // ... while tumble-draw, which it runs for render, compare and view, has the renderer.
@@ -203,8 +205,8 @@ TEST_F(CommandExitStatus, AMissingDrawingExecutableIsAnInternalError) {
   const auto lonely = dir_ / "bin";
   std::filesystem::create_directories(lonely);
   std::filesystem::copy_file(tumble_executable(), lonely / "tumble");
-  const auto result = run_command((lonely / "tumble").string() + " render " + scene_ + " -o " +
-                                  out("a.mp4"));
+  const auto result =
+      run_command((lonely / "tumble").string() + " render " + scene_ + " -o " + out("a.mp4"));
   EXPECT_EQ(result.status, kExitInternalError) << result.err;
   EXPECT_THAT(result.err, HasSubstr("tumble render: internal error: cannot run"));
   EXPECT_THAT(result.err, HasSubstr("tumble-draw"));

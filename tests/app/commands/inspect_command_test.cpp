@@ -66,12 +66,13 @@ TEST_F(InspectCommand, HelpListsEveryOption) {
 TEST_F(InspectCommand, JsonReportOfABoxMatchesTheClosedForm) {
   // A 2 x 3 x 4 box centred at (1, 2, 3), density 500: m = 12000, Ixx = m (9 + 16) / 12.
   write_box_stl(path("box.stl"), 2, 3, 4, 1, 2, 3);
-  const auto result = run_command(tumble_executable() + " inspect --json --density 500 " + path("box.stl"));
+  const auto result =
+      run_command(tumble_executable() + " inspect --json --density 500 " + path("box.stl"));
   ASSERT_EQ(result.status, 0) << result.err;
   const auto json = nlohmann::json::parse(result.out);
-  for (const char* key : {"file", "triangles", "parts", "watertight", "volume", "mass", "density",
-                          "center_of_mass", "inertia", "principal_moments", "principal_axes",
-                          "warnings"}) {
+  for (const char* key :
+       {"file", "triangles", "parts", "watertight", "volume", "mass", "density", "center_of_mass",
+        "inertia", "principal_moments", "principal_axes", "warnings"}) {
     EXPECT_TRUE(json.contains(key)) << key;
   }
   const double m = 24.0 * 500.0;
@@ -113,13 +114,15 @@ TEST_F(InspectCommand, MassAndScaleOptions) {
   EXPECT_NEAR(json["volume"].get<double>(), 24e-6, 1e-18);
   EXPECT_NEAR(json["mass"].get<double>(), 2.0, 1e-12);
   EXPECT_NEAR(json["density"].get<double>(), 2.0 / 24e-6, 1e-6);
-  EXPECT_NEAR(json["principal_moments"][2].get<double>(), 2.0 * (0.03 * 0.03 + 0.04 * 0.04) / 12, 1e-15);
+  EXPECT_NEAR(json["principal_moments"][2].get<double>(), 2.0 * (0.03 * 0.03 + 0.04 * 0.04) / 12,
+              1e-15);
 }
 
 TEST_F(InspectCommand, SeveralFilesGiveAJsonArray) {
   write_box_stl(path("a.stl"), 1, 1, 1);
   write_box_stl(path("b.stl"), 2, 2, 2);
-  const auto result = run_command(tumble_executable() + " inspect --json " + path("a.stl") + " " + path("b.stl"));
+  const auto result =
+      run_command(tumble_executable() + " inspect --json " + path("a.stl") + " " + path("b.stl"));
   ASSERT_EQ(result.status, 0) << result.err;
   const auto json = nlohmann::json::parse(result.out);
   ASSERT_TRUE(json.is_array());
@@ -154,7 +157,8 @@ TEST_F(InspectCommand, OpenMeshFailsWithOneLineNamingTheFile) {
 TEST_F(InspectCommand, ShellModeAcceptsTheOpenMesh) {
   // The box without its top face (two triangles at z = +0.5), as a 1 mm sheet.
   write_box_stl(path("open.stl"), 1, 1, 1, 0, 0, 0, 2);
-  const auto result = run_command(tumble_executable() + " inspect --json --shell 0.001 " + path("open.stl"));
+  const auto result =
+      run_command(tumble_executable() + " inspect --json --shell 0.001 " + path("open.stl"));
   ASSERT_EQ(result.status, 0) << result.err;
   const auto json = nlohmann::json::parse(result.out);
   EXPECT_EQ(json["shell"], true);
@@ -169,26 +173,31 @@ TEST_F(InspectCommand, MissingFileAndBadValuesAreErrors) {
   EXPECT_THAT(missing.err, HasSubstr(path("nope.stl") + ": no such file"));
 
   write_box_stl(path("box.stl"), 1, 1, 1);
-  const auto negative = run_command(tumble_executable() + " inspect --density -3 " + path("box.stl"));
+  const auto negative =
+      run_command(tumble_executable() + " inspect --density -3 " + path("box.stl"));
   EXPECT_NE(negative.status, 0);
   EXPECT_THAT(negative.err, HasSubstr("density must be a positive finite number"));
 
-  const auto both = run_command(tumble_executable() + " inspect --density 3 --mass 1 " + path("box.stl"));
+  const auto both =
+      run_command(tumble_executable() + " inspect --density 3 --mass 1 " + path("box.stl"));
   EXPECT_NE(both.status, 0);
   EXPECT_THAT(both.err, HasSubstr("excludes"));
 
-  const auto nan_scale = run_command(tumble_executable() + " inspect --scale nan " + path("box.stl"));
+  const auto nan_scale =
+      run_command(tumble_executable() + " inspect --scale nan " + path("box.stl"));
   EXPECT_NE(nan_scale.status, 0);
   EXPECT_THAT(nan_scale.err, HasSubstr("scale"));
 }
 
 TEST_F(InspectCommand, OneBadFileAmongGoodOnesFailsAndJsonPrintsNothing) {
   write_box_stl(path("good.stl"), 1, 1, 1);
-  const auto human = run_command(tumble_executable() + " inspect " + path("good.stl") + " " + path("bad.stl"));
+  const auto human =
+      run_command(tumble_executable() + " inspect " + path("good.stl") + " " + path("bad.stl"));
   EXPECT_EQ(human.status, 1);
   EXPECT_THAT(human.out, HasSubstr("good.stl"));
   EXPECT_THAT(human.err, HasSubstr("bad.stl: no such file"));
-  const auto json = run_command(tumble_executable() + " inspect --json " + path("good.stl") + " " + path("bad.stl"));
+  const auto json = run_command(tumble_executable() + " inspect --json " + path("good.stl") + " " +
+                                path("bad.stl"));
   EXPECT_EQ(json.status, 1);
   EXPECT_TRUE(json.out.empty());
 }

@@ -50,7 +50,6 @@ class RenderCommand : public testing::CommandTest {
     return run_command(tumble_executable() + " render " + arguments);
   }
 
-
   /// Names in the test folder (temporaries start with '.').
   std::vector<std::string> entries() const {
     std::vector<std::string> names;

@@ -322,13 +322,15 @@ TEST_F(SimulateCommand, CommandLineOverridesTheScene) {
 
 TEST_F(SimulateCommand, BlowUpExitsWithThreeAndKeepsAValidCsv) {
   // Explicit Euler on a needle (1 : 1000 : 1000) spinning fast about its axis, large dt.
-  const json scene =
-      testing::SceneBuilder()
-          .duration(10.0)
-          .dt(0.01)
-          .integrator("explicit-euler")
-          .body(testing::BodyBuilder("needle").principal({0.001, 1, 1}).mass(1.0).angular_velocity({10, 1, 0}))
-          .json();
+  const json scene = testing::SceneBuilder()
+                         .duration(10.0)
+                         .dt(0.01)
+                         .integrator("explicit-euler")
+                         .body(testing::BodyBuilder("needle")
+                                   .principal({0.001, 1, 1})
+                                   .mass(1.0)
+                                   .angular_velocity({10, 1, 0}))
+                         .json();
   std::ofstream(path("out.csv")) << "an older file\n";
   const auto result = simulate(write_scene(scene) + " --every 7 --json --csv " + path("out.csv"));
   EXPECT_EQ(result.status, 3);
@@ -369,8 +371,12 @@ TEST_F(SimulateCommand, StiffSpringBlowsUpUnderSymplecticEuler) {
           .duration(1.0)
           .dt(0.025)
           .integrator("semi-implicit-euler")
-          .body(testing::BodyBuilder("bob").principal({1, 1, 1}).mass(1.0).position({0.1, 0, 0}).set(
-              "spring", {{"anchor", {0, 0, 0}}, {"attach", {0, 0, 0}}, {"stiffness", 1e4}}))
+          .body(testing::BodyBuilder("bob")
+                    .principal({1, 1, 1})
+                    .mass(1.0)
+                    .position({0.1, 0, 0})
+                    .set("spring",
+                         {{"anchor", {0, 0, 0}}, {"attach", {0, 0, 0}}, {"stiffness", 1e4}}))
           .json();
   const auto result = simulate(write_scene(scene) + " --csv " + path("out.csv"));
   EXPECT_EQ(result.status, 3);

@@ -24,17 +24,17 @@ using tumble::testing::run_command;
 using tumble::testing::tumble_executable;
 
 /// The CSV as rows of column name -> value (RFC 4180, as tumble writes it).
-std::vector<std::map<std::string, std::string>> read_csv(const std::filesystem::path& file,
-                                                         std::vector<std::string>* header = nullptr) {
+std::vector<std::map<std::string, std::string>> read_csv(
+    const std::filesystem::path& file, std::vector<std::string>* header = nullptr) {
   testing::CsvTable table = testing::read_csv(file);
   if (header) *header = table.header;
   return table.rows;
 }
 
 /// The one row of (case, integrator, rate dt).
-std::map<std::string, std::string> find_row(const std::vector<std::map<std::string, std::string>>& rows,
-                                            const std::string& case_name,
-                                            const std::string& integrator, double rate_dt) {
+std::map<std::string, std::string> find_row(
+    const std::vector<std::map<std::string, std::string>>& rows, const std::string& case_name,
+    const std::string& integrator, double rate_dt) {
   for (const auto& row : rows) {
     if (row.at("case") == case_name && row.at("integrator") == integrator &&
         std::abs(std::stod(row.at("rate_dt")) - rate_dt) < 1e-9 * rate_dt) {
@@ -116,12 +116,29 @@ TEST_F(QuickSuite, SymplecticEulerFlipsAcrossWnDtOfTwoOnTheStiffSpring) {
 TEST_F(QuickSuite, CsvHasEveryColumnAndOneRowPerRun) {
   std::vector<std::string> header;
   const auto rows = read_csv(out() / "stability.csv", &header);
-  for (const char* column :
-       {"suite", "case", "integrator", "dt", "rate_label", "rate_dt", "duration", "steps",
-        "total_steps", "outcome", "blowup_time", "blowup_reason", "energy_change_final",
-        "energy_max_gain", "energy_max_loss", "momentum_change_final", "momentum_max_gain",
-        "momentum_max_loss", "orientation_error", "position_error", "reference", "wall_seconds",
-        "note"}) {
+  for (const char* column : {"suite",
+                             "case",
+                             "integrator",
+                             "dt",
+                             "rate_label",
+                             "rate_dt",
+                             "duration",
+                             "steps",
+                             "total_steps",
+                             "outcome",
+                             "blowup_time",
+                             "blowup_reason",
+                             "energy_change_final",
+                             "energy_max_gain",
+                             "energy_max_loss",
+                             "momentum_change_final",
+                             "momentum_max_gain",
+                             "momentum_max_loss",
+                             "orientation_error",
+                             "position_error",
+                             "reference",
+                             "wall_seconds",
+                             "note"}) {
     EXPECT_NE(std::find(header.begin(), header.end(), column), header.end()) << column;
   }
   // 11 integrators x (2 + 2 + 3) dts.
@@ -200,8 +217,9 @@ TEST(StabilityCommand, UserSceneAppearsAsACase) {
   EXPECT_THAT(read_text(out / "stability.md"), HasSubstr("## Case `wobbly`"));
 
   // With --dts the sweep is the user's.
-  const auto again = run_command(tumble_executable() + " stability --integrators rk4 --dts 0.05,0.1 '" +
-                                 scene.string() + "' -o '" + out.string() + "'");
+  const auto again =
+      run_command(tumble_executable() + " stability --integrators rk4 --dts 0.05,0.1 '" +
+                  scene.string() + "' -o '" + out.string() + "'");
   ASSERT_EQ(again.status, 0) << again.err;
   EXPECT_EQ(read_csv(out / "stability.csv").size(), 2u);
   std::filesystem::remove_all(dir);
@@ -231,8 +249,9 @@ TEST(StabilityCommand, ReplacesOnlyAnEmptyFolderOrAnEarlierOutput) {
   std::ofstream(dir / "mine" / "notes.txt") << "keep";
   const auto refused = stability(dir / "mine");
   EXPECT_EQ(refused.status, 1);
-  EXPECT_THAT(refused.err, HasSubstr("-o: " + (dir / "mine").string() +
-                                     " exists and is neither empty nor a previous stability output"));
+  EXPECT_THAT(refused.err,
+              HasSubstr("-o: " + (dir / "mine").string() +
+                        " exists and is neither empty nor a previous stability output"));
   EXPECT_EQ(read_text(dir / "mine" / "notes.txt"), "keep");
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir / "mine"),
                           std::filesystem::directory_iterator()),

@@ -89,7 +89,9 @@ TEST(JsonField, ExpectObjectListsTheAllowedKeys) {
   const json doc = json::parse(R"({"body": {"mass": 1, "colour": "red"}})");
   const JsonField body = JsonField(doc, "", kFile).require("body", "an object");
   EXPECT_NO_THROW(body.expect_object({"mass", "colour", "name"}));
-  EXPECT_EQ(input_error_of([&] { body.expect_object({"mass", "color"}); }),
+  EXPECT_EQ(input_error_of([&] {
+              body.expect_object({"mass", "color"});
+            }),
             "scene.json: body.colour: unknown key; expected one of: mass, color");
   const json number = 3;
   EXPECT_EQ(input_error_of([&] { JsonField(number, "body", kFile).expect_object({"mass"}); }),

@@ -29,7 +29,8 @@ TEST(SplitOptionList, SplitsOnCommasAndTrimsBlanks) {
 }
 
 TEST(SplitOptionList, EmptyListsAndEmptyItemsAreErrorsNamingTheOption) {
-  const std::string expected = "--cases: expected a comma-separated list without empty items, got '";
+  const std::string expected =
+      "--cases: expected a comma-separated list without empty items, got '";
   EXPECT_EQ(input_error_of([] { split_option_list("", "--cases"); }), expected + "'");
   EXPECT_EQ(input_error_of([] { split_option_list("a,,b", "--cases"); }), expected + "a,,b'");
   EXPECT_EQ(input_error_of([] { split_option_list(",a", "--cases"); }), expected + ",a'");
@@ -63,7 +64,8 @@ TEST(ParseIntegratorList, NamesInOrderEachOnce) {
 TEST(ParseIntegratorList, UnknownNameListsEveryIntegrator) {
   const std::string message =
       input_error_of([] { parse_integrator_list("rk4,leapfrog", "--integrators"); });
-  EXPECT_THAT(message, HasSubstr("--integrators: unknown integrator 'leapfrog'; expected one of: "));
+  EXPECT_THAT(message,
+              HasSubstr("--integrators: unknown integrator 'leapfrog'; expected one of: "));
   for (const auto& info : engine::integrator_catalog()) EXPECT_THAT(message, HasSubstr(info.name));
   EXPECT_THAT(input_error_of([] { parse_integrator_list("RK4", "-i"); }),
               HasSubstr("-i: unknown integrator 'RK4'"));

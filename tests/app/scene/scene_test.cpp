@@ -12,8 +12,8 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/input_error.hpp"
-#include "support/run_command.hpp"
 #include "support/input_error.hpp"
+#include "support/run_command.hpp"
 #include "support/scene_builder.hpp"
 
 namespace tumble::app {

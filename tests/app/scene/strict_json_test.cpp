@@ -12,9 +12,9 @@
 namespace tumble::app {
 namespace {
 
+using nlohmann::json;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
-using nlohmann::json;
 
 std::string error_of(const std::string& text, const std::string& source = "scene.json") {
   return testing::input_error_of([&] { parse_strict_json(text, source); }, "'" + text + "'");
@@ -73,8 +73,9 @@ TEST(StrictJson, DuplicateKeyDeepInsideNamesItsFullPath) {
     {"inertia": {"principal": [1, 2, {"k": 1, "k": 2}]}}
   ]
 })";
-  EXPECT_EQ(error_of(text, "deep.json"),
-            "deep.json: bodies[1].inertia.principal[2].k: duplicate key (each key may appear once)");
+  EXPECT_EQ(
+      error_of(text, "deep.json"),
+      "deep.json: bodies[1].inertia.principal[2].k: duplicate key (each key may appear once)");
 }
 
 TEST(StrictJson, TheSameKeyInDifferentObjectsIsNoDuplicate) {

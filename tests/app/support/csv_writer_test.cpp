@@ -6,8 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <string>
 #include <vector>
@@ -79,8 +79,8 @@ TEST(AppendNumber, SeventeenSignificantDigitsReadBackExactly) {
   EXPECT_EQ(number(1.0 / 3.0), "0.33333333333333331");  // as printf("%.17g") writes them
   EXPECT_EQ(number(4.9e-324), "4.9406564584124654e-324");
   EXPECT_EQ(number(123456789.0), "123456789");
-  for (const double value : {1.0 / 3.0, M_PI, -std::exp(1.0) * 1e200, 4.9e-324,
-                             std::numeric_limits<double>::max()}) {
+  for (const double value :
+       {1.0 / 3.0, M_PI, -std::exp(1.0) * 1e200, 4.9e-324, std::numeric_limits<double>::max()}) {
     EXPECT_EQ(std::strtod(number(value).c_str(), nullptr), value) << number(value);
   }
 }

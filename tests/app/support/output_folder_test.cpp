@@ -16,15 +16,17 @@ namespace tumble::app {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::directory_entries;
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
-using testing::directory_entries;
 using testing::input_error_of;
 using testing::read_text;
 
 const OutputFolderKind kBench{"bench", "report.md", "# tumble bench", "results.csv"};
 
-void write(const fs::path& file, const std::string& text) { std::ofstream(file) << text; }
+void write(const fs::path& file, const std::string& text) {
+  std::ofstream(file) << text;
+}
 
 class OutputFolderTest : public ::testing::Test {
  protected:
@@ -131,7 +133,8 @@ TEST_F(OutputFolderTest, AFileInTheWayIsRefused) {
 TEST_F(OutputFolderTest, AMissingParentIsAnErrorNotATreeOfNewFolders) {
   const fs::path dir = root_ / "typo" / "out";
   const std::string message = input_error_of([&] { start_output_folder(dir, kBench); });
-  EXPECT_THAT(message, HasSubstr("-o: cannot create " + dir.string() + " (written first as .out.tmp-"));
+  EXPECT_THAT(message,
+              HasSubstr("-o: cannot create " + dir.string() + " (written first as .out.tmp-"));
   EXPECT_FALSE(fs::exists(root_ / "typo"));
 }
 
@@ -141,7 +144,8 @@ TEST_F(OutputFolderTest, FinishingWithoutTheTemporaryKeepsTheEarlierOutput) {
   write(dir / "results.csv", "old\n");
   const std::string message =
       input_error_of([&] { finish_output_folder(root_ / ".gone.tmp-1", dir); });
-  EXPECT_THAT(message, HasSubstr("-o: " + dir.string() + ": cannot move the new output into place"));
+  EXPECT_THAT(message,
+              HasSubstr("-o: " + dir.string() + ": cannot move the new output into place"));
   EXPECT_EQ(read_text(dir / "results.csv"), "old\n");
   EXPECT_THAT(directory_entries(root_), ElementsAre("out"));
 }

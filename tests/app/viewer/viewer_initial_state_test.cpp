@@ -55,12 +55,12 @@ double rotation_angle(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
 }
 
 void expect_vec_near(const Eigen::Vector3d& actual, const Eigen::Vector3d& expected, double tol) {
-  EXPECT_NEAR(actual.x(), expected.x(), tol) << "actual " << actual.transpose() << ", expected "
-                                             << expected.transpose();
-  EXPECT_NEAR(actual.y(), expected.y(), tol) << "actual " << actual.transpose() << ", expected "
-                                             << expected.transpose();
-  EXPECT_NEAR(actual.z(), expected.z(), tol) << "actual " << actual.transpose() << ", expected "
-                                             << expected.transpose();
+  EXPECT_NEAR(actual.x(), expected.x(), tol)
+      << "actual " << actual.transpose() << ", expected " << expected.transpose();
+  EXPECT_NEAR(actual.y(), expected.y(), tol)
+      << "actual " << actual.transpose() << ", expected " << expected.transpose();
+  EXPECT_NEAR(actual.z(), expected.z(), tol)
+      << "actual " << actual.transpose() << ", expected " << expected.transpose();
 }
 
 /// A free body with three distinct moments whose principal axes are turned away from its body
@@ -141,9 +141,10 @@ TEST(ViewerInitialState, EnergyIsHalfWDotL) {
   EXPECT_NEAR(engine::energy(b.model, b.state), expected, 1e-13 * expected);
   // Closed form in the principal frame: 0.5 sum I_k w_k^2.
   const Eigen::Vector3d local = b.R.transpose() * w;
-  EXPECT_NEAR(expected, 0.5 * (0.7 * local[0] * local[0] + 1.9 * local[1] * local[1] +
-                               2.3 * local[2] * local[2]),
-              1e-13 * expected);
+  EXPECT_NEAR(
+      expected,
+      0.5 * (0.7 * local[0] * local[0] + 1.9 * local[1] * local[1] + 2.3 * local[2] * local[2]),
+      1e-13 * expected);
 }
 
 TEST(ViewerInitialState, PivotedBodyCentreOfMassVelocityFollowsOmega) {
@@ -157,8 +158,7 @@ TEST(ViewerInitialState, PivotedBodyCentreOfMassVelocityFollowsOmega) {
   expect_vec_near(state.position, top.pivot + arm, 1e-14);
   expect_vec_near(state.velocity, w.cross(arm), 1e-13);
   // L is about the pivot (moments given about the pivot).
-  expect_vec_near(state.angular_momentum,
-                  R * top.moments.asDiagonal() * R.transpose() * w, 1e-14);
+  expect_vec_near(state.angular_momentum, R * top.moments.asDiagonal() * R.transpose() * w, 1e-14);
 }
 
 // --- Yaw, pitch, roll --------------------------------------------------------------------------
@@ -173,8 +173,7 @@ TEST(ViewerInitialState, YawPitchRollRoundTrip) {
     const Eigen::Vector3d back = orientation_ypr_deg(b.model, b.state);
     expect_vec_near(back, ypr, 1e-8);
     // The body frame (not the principal frame) is the one turned to yaw, pitch, roll.
-    const Eigen::Matrix3d body_to_world =
-        b.state.orientation.toRotationMatrix() * b.P.transpose();
+    const Eigen::Matrix3d body_to_world = b.state.orientation.toRotationMatrix() * b.P.transpose();
     EXPECT_LT(rotation_angle(body_to_world, ypr_matrix(ypr)), 1e-12) << ypr.transpose();
   }
 }
@@ -199,9 +198,8 @@ TEST(ViewerInitialState, GimbalLockGivesTheSameRotation) {
     Eigen::Vector3d set;
     Eigen::Vector3d expected;
   };
-  const Case exact[] = {{{30, 90, 10}, {20, 90, 0}},
-                        {{30, -90, 10}, {40, -90, 0}},
-                        {{-150, 90, 60}, {150, 90, 0}}};
+  const Case exact[] = {
+      {{30, 90, 10}, {20, 90, 0}}, {{30, -90, 10}, {40, -90, 0}}, {{-150, 90, 60}, {150, 90, 0}}};
   for (const Case& c : exact) {
     set_orientation_ypr_deg(b.model, b.state, c.set);
     const Eigen::Vector3d back = orientation_ypr_deg(b.model, b.state);
@@ -209,8 +207,8 @@ TEST(ViewerInitialState, GimbalLockGivesTheSameRotation) {
     EXPECT_LT(rotation_angle(ypr_matrix(back), ypr_matrix(c.set)), 1e-7) << c.set.transpose();
   }
   // Close to the lock (either branch of the code), the angles read back name the same rotation.
-  for (const double pitch : {90.0 - 1e-9, 90.0 - 1e-7, 90.0 - 1e-5, 90.0 - 1e-3, -90.0 + 1e-7,
-                             -90.0 + 1e-4}) {
+  for (const double pitch :
+       {90.0 - 1e-9, 90.0 - 1e-7, 90.0 - 1e-5, 90.0 - 1e-3, -90.0 + 1e-7, -90.0 + 1e-4}) {
     const Eigen::Vector3d set(25.0, pitch, -35.0);
     set_orientation_ypr_deg(b.model, b.state, set);
     const Eigen::Vector3d back = orientation_ypr_deg(b.model, b.state);

@@ -7,7 +7,6 @@
 
 #include <cstring>
 
-
 namespace tumble::app::viewer {
 namespace {
 

@@ -56,12 +56,12 @@ class ViewerPanels : public testing::CommandTest {
   }
 
   void open_brick() {
-    const std::string scene = write_scene(testing::SceneBuilder()
-                                              .duration(5.0)
-                                              .dt(0.01)
-                                              .body(testing::BodyBuilder("brick").angular_velocity(
-                                                  {0.1, 2.0, 0.1}))
-                                              .json());
+    const std::string scene =
+        write_scene(testing::SceneBuilder()
+                        .duration(5.0)
+                        .dt(0.01)
+                        .body(testing::BodyBuilder("brick").angular_velocity({0.1, 2.0, 0.1}))
+                        .json());
     ASSERT_TRUE(viewer_->open(scene));
   }
 
@@ -148,11 +148,9 @@ TEST_F(ViewerPanels, OpenRequestedOpensTheFilesSection) {
 }
 
 TEST_F(ViewerPanels, TypingAPathAndClickingOpenOpensIt) {
-  const std::string scene = write_scene(testing::SceneBuilder()
-                                            .name("typed")
-                                            .body(testing::BodyBuilder("brick"))
-                                            .json(),
-                                        "typed.json");
+  const std::string scene =
+      write_scene(testing::SceneBuilder().name("typed").body(testing::BodyBuilder("brick")).json(),
+                  "typed.json");
   frame();
   click("Files");
   click("##open");

@@ -327,13 +327,13 @@ TEST(ViewerScript, ZeroIsAValidFirstTimeAndTimesMayRepeat) {
 TEST(ViewerScript, LineNumbersCountBlankAndCommentLines) {
   EXPECT_THAT(error_of("# header\n\n0 key space\n   \n# more\n1 move 1\n"),
               HasSubstr("run.txt:6: expected a number for Y, got end of line"));
-  EXPECT_THAT(error_of("0 quit\r\n1 quit\r\n2 bogus\r\n"),
-              HasSubstr("run.txt:3: expected a verb"));
+  EXPECT_THAT(error_of("0 quit\r\n1 quit\r\n2 bogus\r\n"), HasSubstr("run.txt:3: expected a verb"));
 }
 
 TEST(ViewerScript, TheDecreasingTimeNamesThePreviousLinesTime) {
-  EXPECT_THAT(error_of("0.5 key a\n0.75 key b\n0.7 key c\n"),
-              HasSubstr("run.txt:3: expected a time >= 0.75 (times must not decrease), got \"0.7\""));
+  EXPECT_THAT(
+      error_of("0.5 key a\n0.75 key b\n0.7 key c\n"),
+      HasSubstr("run.txt:3: expected a time >= 0.75 (times must not decrease), got \"0.7\""));
   // Only the latest time counts: 1 then 3 then 2 fails at line 3, not 1 then 0.5 at line 2.
   EXPECT_THAT(error_of("1 quit\n3 quit\n2 quit\n"), HasSubstr("run.txt:3: expected a time >= 3"));
 }

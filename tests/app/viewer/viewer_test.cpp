@@ -29,7 +29,8 @@ nlohmann::json drifting_brick() {
   return testing::SceneBuilder()
       .duration(20.0)
       .dt(0.005)
-      .body(testing::BodyBuilder("brick").velocity({0.5, 0.0, 0.0}).angular_velocity({0.1, 2.0, 0.1}))
+      .body(
+          testing::BodyBuilder("brick").velocity({0.5, 0.0, 0.0}).angular_velocity({0.1, 2.0, 0.1}))
       .json();
 }
 

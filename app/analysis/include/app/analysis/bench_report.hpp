@@ -17,7 +17,7 @@ struct BenchOutcome {
   std::vector<BenchCase> cases;
   std::vector<CaseResult> results;  ///< one per case
   int repeat = 0;
-  std::size_t workers = 0;           ///< worker threads, one pinned core each
+  std::size_t workers = 0;  ///< worker threads, one pinned core each
   std::vector<int> cores_used;
   std::size_t cores_available = 0;
 };

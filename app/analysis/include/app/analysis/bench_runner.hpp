@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
+#include "app/analysis/error_measures.hpp"
 #include "engine/integrators.hpp"
 #include "engine/rigid_body.hpp"
 #include "engine/simulation.hpp"
-#include "app/analysis/error_measures.hpp"
 
 namespace tumble::app {
 
@@ -26,8 +26,8 @@ struct BenchScene {
   engine::SimulationSettings settings;  ///< duration and blow-up factor as the bench runs them
   SampleGrid grid;
   Reference reference;
-  bool torque_free = true;    ///< |L| is an invariant of every body
-  bool conservative = true;   ///< energy is an invariant of every body
+  bool torque_free = true;   ///< |L| is an invariant of every body
+  bool conservative = true;  ///< energy is an invariant of every body
 };
 
 /// One integrator at one step size (or tolerance) on one scene.
@@ -37,14 +37,14 @@ struct BenchCase {
   engine::IntegratorKind kind = engine::IntegratorKind::kRk4;
   int order = 0;
   bool adaptive = false;
-  double dt = 0.0;                   ///< s (adaptive: the output step, the grid's interval)
-  std::optional<double> tolerance;   ///< adaptive only
+  double dt = 0.0;                  ///< s (adaptive: the output step, the grid's interval)
+  std::optional<double> tolerance;  ///< adaptive only
 };
 
 /// What one case measured.
 struct CaseResult {
-  std::size_t steps = 0;        ///< output steps completed
-  std::size_t total_steps = 0;  ///< output steps the duration needs
+  std::size_t steps = 0;               ///< output steps completed
+  std::size_t total_steps = 0;         ///< output steps the duration needs
   std::optional<double> blow_up_time;  ///< s, when the run blew up (no error figures then)
   std::string blow_up_reason;
   std::vector<double> seconds;  ///< the timed runs, stepping loop only

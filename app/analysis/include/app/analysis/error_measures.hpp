@@ -48,7 +48,7 @@ struct ReferenceCheck {
 
 /// The reference trajectory of a scene on its grid.
 struct Reference {
-  std::string description;  ///< e.g. "exact torque-free solution"
+  std::string description;                           ///< e.g. "exact torque-free solution"
   std::vector<std::vector<ReferenceState>> samples;  ///< [k - 1][body]
   std::optional<ReferenceCheck> check;               ///< forced problems only
 };

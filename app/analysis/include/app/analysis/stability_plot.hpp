@@ -13,9 +13,9 @@ namespace tumble::app {
 /// One case's matrix.
 struct HeatMapPanel {
   std::string title;
-  std::string x_label;               ///< e.g. "|w| dt"
-  std::vector<std::string> columns;  ///< the dt labels
-  std::vector<std::string> rows;     ///< the integrators, top to bottom
+  std::string x_label;                               ///< e.g. "|w| dt"
+  std::vector<std::string> columns;                  ///< the dt labels
+  std::vector<std::string> rows;                     ///< the integrators, top to bottom
   std::vector<std::vector<StabilityOutcome>> cells;  ///< [row][column]
 };
 

@@ -42,9 +42,9 @@ struct StabilityRun {
   std::string blowup_reason;
   std::optional<double> orientation_error;  ///< rad, largest over the bodies
   std::optional<double> position_error;     ///< m, largest over the bodies
-  std::string reference;  ///< StabilityReference::kind
-  double wall_seconds = 0.0;  ///< the stepping loop
-  std::string note;  ///< why a skipped run was not made
+  std::string reference;                    ///< StabilityReference::kind
+  double wall_seconds = 0.0;                ///< the stepping loop
+  std::string note;                         ///< why a skipped run was not made
 };
 
 /// Runs case `c` under `info` at step `dt`. Skipped (with the reason in `note`) when the case

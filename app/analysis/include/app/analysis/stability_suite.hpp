@@ -28,8 +28,8 @@ struct StabilityCase {
   std::string skip_note;
   /// The energy that relative energy changes are divided by, J (absent: |E0|).
   std::optional<double> energy_scale;
-  double blowup_factor = 10.0;  ///< see engine::SimulationSettings
-  double tolerance = 1e-10;     ///< dopri's tolerance in the sweep
+  double blowup_factor = 10.0;      ///< see engine::SimulationSettings
+  double tolerance = 1e-10;         ///< dopri's tolerance in the sweep
   std::optional<std::string> note;  ///< shown under the case's matrix
 };
 

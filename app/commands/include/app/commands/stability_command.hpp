@@ -19,10 +19,10 @@ namespace tumble::app {
 
 /// What `tumble stability` was asked to do.
 struct StabilityOptions {
-  std::optional<std::string> suite;         ///< default "standard" (none when only scenes are given)
-  std::optional<std::string> integrators;   ///< comma-separated names; default all
-  std::optional<std::string> dts;           ///< comma-separated seconds, for scene cases
-  std::optional<std::string> cases;         ///< comma-separated built-in case names
+  std::optional<std::string> suite;        ///< default "standard" (none when only scenes are given)
+  std::optional<std::string> integrators;  ///< comma-separated names; default all
+  std::optional<std::string> dts;          ///< comma-separated seconds, for scene cases
+  std::optional<std::string> cases;        ///< comma-separated built-in case names
   std::vector<std::filesystem::path> scenes;
   std::optional<std::filesystem::path> output;
   bool list_suites = false;

@@ -1,7 +1,7 @@
 #pragma once
 /// @file `tumble view`: the interactive viewer (SDL2 window, Dear ImGui panels, the off-screen
-/// renderer's frames). The window lives in app/viewer/window/, built when the TUMBLE_VIEWER option is
-/// on (the default where SDL2 is found); without it `tumble view` says so and fails.
+/// renderer's frames). The window lives in app/viewer/window/, built when the TUMBLE_VIEWER option
+/// is on (the default where SDL2 is found); without it `tumble view` says so and fails.
 
 #include <iosfwd>
 

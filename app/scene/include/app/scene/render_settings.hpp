@@ -19,19 +19,19 @@ struct CameraSettings {
   /// automatically (see FrameBuilder), from `azimuth_deg` and `elevation_deg`.
   std::optional<Eigen::Vector3d> eye;
   std::optional<Eigen::Vector3d> target;
-  double fov_deg = 40.0;                 ///< vertical field of view
-  std::optional<double> distance;        ///< m from the target (default: auto-framing)
-  double azimuth_deg = -60.0;            ///< about world z, from +x
-  double elevation_deg = 25.0;           ///< above the xy plane
-  double orbit_period = 30.0;            ///< s of simulation time per turn (orbit mode)
-  std::size_t follow_body = 0;           ///< body index the camera follows (follow mode)
+  double fov_deg = 40.0;           ///< vertical field of view
+  std::optional<double> distance;  ///< m from the target (default: auto-framing)
+  double azimuth_deg = -60.0;      ///< about world z, from +x
+  double elevation_deg = 25.0;     ///< above the xy plane
+  double orbit_period = 30.0;      ///< s of simulation time per turn (orbit mode)
+  std::size_t follow_body = 0;     ///< body index the camera follows (follow mode)
 };
 
 /// A trail: the world path of a point fixed in a body.
 struct TrailSettings {
   std::size_t body = 0;
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< body frame (m, from the centre of mass)
-  double seconds = 5.0;                              ///< how much history is drawn
+  double seconds = 5.0;                             ///< how much history is drawn
 };
 
 /// What a frame shows; each item switchable in the scene's `render.show` object.
@@ -60,8 +60,8 @@ struct RenderSettings {
   int width = 1280;
   int height = 720;
   double fps = 30.0;
-  double time_scale = 1.0;   ///< simulated seconds per second of video
-  int antialiasing = 1;      ///< samples per pixel (1: off)
+  double time_scale = 1.0;  ///< simulated seconds per second of video
+  int antialiasing = 1;     ///< samples per pixel (1: off)
   CameraSettings camera;
   ShowSettings show;
 };

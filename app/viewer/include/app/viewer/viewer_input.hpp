@@ -38,9 +38,42 @@ enum class Key {
   kMinus,   ///< also keypad minus
   kEquals,  ///< also keypad plus: "faster" on keyboards where + needs shift
   kF1,
-  kA, kB, kC, kD, kE, kF, kG, kH, kI, kJ, kK, kL, kM,
-  kN, kO, kP, kQ, kR, kS, kT, kU, kV, kW, kX, kY, kZ,
-  k0, k1, k2, k3, k4, k5, k6, k7, k8, k9,
+  kA,
+  kB,
+  kC,
+  kD,
+  kE,
+  kF,
+  kG,
+  kH,
+  kI,
+  kJ,
+  kK,
+  kL,
+  kM,
+  kN,
+  kO,
+  kP,
+  kQ,
+  kR,
+  kS,
+  kT,
+  kU,
+  kV,
+  kW,
+  kX,
+  kY,
+  kZ,
+  k0,
+  k1,
+  k2,
+  k3,
+  k4,
+  k5,
+  k6,
+  k7,
+  k8,
+  k9,
 };
 
 struct Modifiers {
@@ -134,7 +167,7 @@ class ImGuiInput {
   void end_frame(ImGuiIO& io);
 
  private:
-  static constexpr int kKeySlots = 64;  ///< > the largest Key code
+  static constexpr int kKeySlots = 64;       ///< > the largest Key code
   bool pressed_[3] = {false, false, false};  ///< pressed since the last end_frame()
   bool pending_release_[3] = {false, false, false};
   bool key_pressed_[kKeySlots] = {};

@@ -78,8 +78,7 @@ class Session {
   /// Opens a scene (.json) or a mesh (any other file), paused or not as before, at t = 0 with
   /// the scene's integrator and dt, or those of `choice` (the command line's --integrator and
   /// --dt). On failure returns the one-line message and keeps what was open.
-  std::optional<std::string> open(const std::filesystem::path& file,
-                                  const RunChoice& choice = {});
+  std::optional<std::string> open(const std::filesystem::path& file, const RunChoice& choice = {});
 
   bool empty() const { return runs_.empty(); }
   /// Changes each time the runs restart (open, reset, integrator or initial state changed), so
