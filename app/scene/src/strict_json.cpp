@@ -1,5 +1,7 @@
-// JSON for people: a SAX reader that builds the document while keeping the JSON path, so
-// overflowing numbers and duplicate keys can be reported where they are.
+// JSON for people: a SAX reader that builds the document while keeping the containers it is
+// in, so overflowing numbers and duplicate keys can be reported where they are. The JSON path
+// is spelled out only for an error message, and nesting is limited to kMaxJsonDepth levels, so
+// memory stays linear in the size of the file.
 #include "app/scene/strict_json.hpp"
 
 #include <optional>
@@ -87,16 +89,25 @@ class Builder : public nlohmann::json_sax<json> {
  private:
   struct Container {
     json* value;
-    std::string path;
     std::string key;  ///< the key of the next member (objects)
   };
 
-  /// The path of the value about to be placed.
+  /// The path of the value about to be placed, spelled out from the open containers (only for
+  /// error messages: keeping it per container would cost the square of the depth).
   std::string next_path() const {
-    if (stack_.empty()) return "";
-    const Container& top = stack_.back();
-    if (top.value->is_array()) return top.path + "[" + std::to_string(top.value->size()) + "]";
-    return top.path.empty() ? top.key : top.path + "." + top.key;
+    std::string path;
+    for (const Container& container : stack_) {
+      if (container.value->is_array()) {
+        // An open container's last element is the one being built; the innermost's next
+        // element is the one about to be placed.
+        const bool innermost = &container == &stack_.back();
+        const std::size_t size = container.value->size();
+        path += "[" + std::to_string(innermost ? size : size - 1) + "]";
+      } else {
+        path += (path.empty() ? "" : ".") + container.key;
+      }
+    }
+    return path;
   }
 
   /// Places `value` in the innermost container (or at the root) and returns where it went.
@@ -121,9 +132,14 @@ class Builder : public nlohmann::json_sax<json> {
   }
 
   bool open(json container) {
-    std::string path = next_path();
+    if (stack_.size() >= kMaxJsonDepth) {
+      failure = Failure{
+          std::nullopt, next_path(),
+          "nested deeper than " + std::to_string(kMaxJsonDepth) + " levels of arrays and objects"};
+      return false;
+    }
     json* where = place(std::move(container));
-    stack_.push_back({where, std::move(path), ""});
+    stack_.push_back({where, ""});
     return true;
   }
 

@@ -5,6 +5,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+
+#include <chrono>
 #include <string>
 
 #include "support/input_error.hpp"
@@ -146,6 +149,47 @@ TEST(StrictJson, EmptyTextTrailingGarbageAndUnclosedCommentsAreMalformed) {
 TEST(StrictJson, SyntaxErrorOnALaterLineCountsEveryNewline) {
   const std::string message = error_of("[\n1,\n2,\n\n  ?]", "n.json");
   EXPECT_THAT(message, StartsWith("n.json:5:"));
+}
+
+/// The peak resident memory of this process so far, in bytes.
+long peak_memory_bytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss * 1024L;
+}
+
+TEST(StrictJson, NestingDeeperThanTheLimitIsRefusedFastWithBoundedMemory) {
+  // 40,000 levels in 80 KB: a copy of the path per level took 3 GB and minutes.
+  const std::string text = std::string(40000, '[') + std::string(40000, ']');
+  const long before = peak_memory_bytes();
+  const auto start = std::chrono::steady_clock::now();
+  const std::string message = error_of(text);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_LT(peak_memory_bytes() - before, 64L << 20);
+  EXPECT_LT(seconds, 1.0);
+  std::string path;
+  for (int i = 0; i < 256; ++i) path += "[0]";
+  EXPECT_EQ(message,
+            "scene.json: " + path + ": nested deeper than 256 levels of arrays and objects");
+}
+
+TEST(StrictJson, TheDepthLimitCountsObjectsAndNamesTheKeys) {
+  std::string text;
+  for (int i = 0; i < 300; ++i) text += R"({"a": )";
+  const std::string message = error_of(text);
+  std::string path = "a";
+  for (int i = 1; i < 256; ++i) path += ".a";
+  EXPECT_EQ(message,
+            "scene.json: " + path + ": nested deeper than 256 levels of arrays and objects");
+}
+
+TEST(StrictJson, NestingUpToTheLimitIsRead) {
+  const std::string text = std::string(256, '[') + "7" + std::string(256, ']');
+  json parsed = parse_strict_json(text, "deep.json");
+  const json* inner = &parsed;
+  for (int i = 0; i < 255; ++i) inner = &(*inner)[0];
+  EXPECT_EQ((*inner)[0].get<int>(), 7);
 }
 
 }  // namespace
