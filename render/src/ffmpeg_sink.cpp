@@ -19,6 +19,7 @@
 #include "frame_queue.hpp"
 #include "output_paths.hpp"
 #include "tumble/errors.hpp"
+#include "tumble/file_checks.hpp"
 #include "unique_fd.hpp"
 
 extern char** environ;
@@ -108,12 +109,13 @@ bool write_all(int fd, const std::uint8_t* data, std::size_t size) {
 class FfmpegSink final : public ImageSink {
  public:
   FfmpegSink(const std::filesystem::path& target, SinkKind kind, const SinkOptions& options)
-      : target_(target),
-        temporary_(temporary_sibling(target)),
-        options_(options),
-        queue_(options.queue_frames) {
-    // The destination must be writable before any frame is rendered.
+      : target_(target), options_(options), queue_(options.queue_frames) {
+    // The destination must be writable before any frame is rendered, and be a new name or a
+    // regular file (through a link: the link's target), never a device or an input.
     require_output_directory(target_);
+    destination_ = checked_output(target_, options.inputs);
+    temporary_ = temporary_sibling(destination_);
+    remove_stale_temporaries(destination_);
     if (!UniqueFd(::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644))) {
       throw InputError("cannot write '" + target_.string() + "': directory '" +
                        output_directory(target_).string() + "': " + std::strerror(errno));
@@ -153,7 +155,7 @@ class FfmpegSink final : public ImageSink {
     const int status = stop(/*kill_child=*/false);
     if (status != 0 || pipe_broken_) fail_after_stop(status);
     std::error_code error;
-    std::filesystem::rename(temporary_, target_, error);
+    std::filesystem::rename(temporary_, destination_, error);
     if (error) {
       std::filesystem::remove(temporary_, error);
       finished_ = true;
@@ -289,6 +291,7 @@ class FfmpegSink final : public ImageSink {
   }
 
   std::filesystem::path target_;
+  std::filesystem::path destination_;  // what is replaced: target_, or a link's target
   std::filesystem::path temporary_;
   SinkOptions options_;
   FrameQueue queue_;

@@ -15,6 +15,7 @@
 #include "output_paths.hpp"
 #include "render/png_io.hpp"
 #include "tumble/errors.hpp"
+#include "tumble/file_checks.hpp"
 
 namespace tumble::render::detail {
 
@@ -49,10 +50,7 @@ bool holds_only_frames(const std::filesystem::path& directory) {
 class PngSequenceSink final : public ImageSink {
  public:
   PngSequenceSink(const std::filesystem::path& target, const SinkOptions& options)
-      : target_(target),
-        temporary_(temporary_sibling(target)),
-        options_(options),
-        queue_(options.queue_frames) {
+      : target_(target), options_(options), queue_(options.queue_frames) {
     // Check the destination before any frame is rendered.
     require_output_directory(target_);
     std::error_code error;
@@ -66,6 +64,10 @@ class PngSequenceSink final : public ImageSink {
                          "': it holds files other than frame_*.png");
       }
     }
+    // A link to a folder is written through (the link stays); an input is never replaced.
+    destination_ = checked_output(target_, options.inputs, /*directory=*/true);
+    temporary_ = temporary_sibling(destination_);
+    remove_stale_temporaries(destination_);
     std::filesystem::remove_all(temporary_, error);
     if (!std::filesystem::create_directory(temporary_, error)) {
       throw InputError("cannot write PNG frames to '" + target_.string() +
@@ -102,9 +104,9 @@ class PngSequenceSink final : public ImageSink {
     try {
       rethrow_failure();
       const std::filesystem::path old = temporary_.string() + "-old";
-      const bool replacing = std::filesystem::exists(target_);
-      if (replacing) std::filesystem::rename(target_, old);
-      std::filesystem::rename(temporary_, target_);
+      const bool replacing = std::filesystem::exists(destination_);
+      if (replacing) std::filesystem::rename(destination_, old);
+      std::filesystem::rename(temporary_, destination_);
       if (replacing) std::filesystem::remove_all(old);
     } catch (const std::filesystem::filesystem_error& e) {
       abort();
@@ -168,6 +170,7 @@ class PngSequenceSink final : public ImageSink {
   }
 
   std::filesystem::path target_;
+  std::filesystem::path destination_;  // what is replaced: target_, or a link's target
   std::filesystem::path temporary_;
   SinkOptions options_;
   FrameQueue queue_;

@@ -283,6 +283,54 @@ TEST(SinkErrors, FileWhereTheFramesFolderShouldBeIsBadInput) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(SinkErrors, ALinkToADeviceIsNeverReplaced) {
+  // Before, the temporary was renamed over the link (and, for /dev/full given itself as root,
+  // over the device node).
+  const auto dir = tumble::testing::fresh_directory("sink_device");
+  std::filesystem::create_symlink("/dev/null", dir / "out.mp4");
+  EXPECT_THAT([&] { open_image_sink(dir / "out.mp4", small_options()); },
+              ThrowsMessage<InputError>(
+                  HasSubstr("cannot write '" + (dir / "out.mp4").string() +
+                            "': it is a symbolic link to a character device, not a regular file")));
+  EXPECT_TRUE(std::filesystem::is_symlink(dir / "out.mp4"));
+  EXPECT_EQ(directory_entries(dir), std::vector<std::string>{"out.mp4"});
+  std::filesystem::remove_all(dir);
+}
+
+TEST(SinkErrors, ALinkToAFileOrFolderIsWrittenThroughAndStays) {
+  const auto dir = tumble::testing::fresh_directory("sink_link");
+  std::filesystem::create_directories(dir / "real" / "frames");
+  std::ofstream(dir / "real" / "video.mp4") << "old";
+  std::ofstream(dir / "real" / "frames" / "frame_000007.png") << "old";
+  std::filesystem::create_symlink("real/video.mp4", dir / "out.mp4");
+  std::filesystem::create_symlink("real/frames", dir / "frames");
+  for (const char* name : {"out.mp4", "frames/"}) {
+    auto sink = open_image_sink(dir / name, small_options());
+    sink->write(small_frame());
+    sink->finish();
+  }
+  EXPECT_TRUE(std::filesystem::is_symlink(dir / "out.mp4"));
+  EXPECT_TRUE(std::filesystem::is_symlink(dir / "frames"));
+  EXPECT_EQ(tumble::testing::read_text(dir / "real" / "video.mp4").substr(4, 4), "ftyp");
+  EXPECT_EQ(directory_entries(dir / "real"), (std::vector<std::string>{"frames", "video.mp4"}));
+  EXPECT_EQ(directory_entries(dir / "real" / "frames"),
+            std::vector<std::string>{"frame_000000.png"});
+  EXPECT_EQ(directory_entries(dir), (std::vector<std::string>{"frames", "out.mp4", "real"}));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(SinkErrors, AStaleTemporaryOfADeadProcessIsRemoved) {
+  const auto dir = tumble::testing::fresh_directory("sink_stale");
+  const auto dead = tumble::testing::run_command("sh -c 'echo $$'");
+  const std::string pid = dead.out.substr(0, dead.out.find('\n'));
+  std::ofstream(dir / (".out.mp4.tmp-" + pid)) << "half a video";
+  auto sink = open_image_sink(dir / "out.mp4", small_options());
+  sink->write(small_frame());
+  sink->finish();
+  EXPECT_EQ(directory_entries(dir), std::vector<std::string>{"out.mp4"});
+  std::filesystem::remove_all(dir);
+}
+
 TEST(SinkErrors, InvalidOptionsAreTheCallers) {
   SinkOptions options = small_options();
   options.fps = 0.0;

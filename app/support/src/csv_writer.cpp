@@ -9,6 +9,7 @@
 #include <system_error>
 
 #include "engine/input_error.hpp"
+#include "tumble/file_checks.hpp"
 #include "tumble/temporary_path.hpp"
 
 namespace tumble::app {
@@ -18,12 +19,12 @@ constexpr std::size_t kFlushBytes = 1 << 20;
 
 }  // namespace
 
-AtomicFile::AtomicFile(std::filesystem::path path) : path_(std::move(path)) {
-  std::error_code error;
-  if (std::filesystem::is_directory(path_, error)) {
-    throw engine::InputError("cannot write '" + path_.string() + "': it is a directory");
-  }
-  temporary_ = temporary_sibling(path_);
+AtomicFile::AtomicFile(std::filesystem::path path, const std::vector<std::filesystem::path>& inputs)
+    : path_(std::move(path)) {
+  // Only a new name or a regular file (through a link: its target) is ever replaced.
+  destination_ = checked_output(path_, inputs);
+  temporary_ = temporary_sibling(destination_);
+  remove_stale_temporaries(destination_);
   file_ = std::fopen(temporary_.c_str(), "wb");
   if (file_ == nullptr) {
     throw engine::InputError("cannot write '" + path_.string() + "': " + std::strerror(errno));
@@ -58,7 +59,7 @@ void AtomicFile::commit() {
   file_ = nullptr;
   if (closed != 0) fail("close failed");
   std::error_code error;
-  std::filesystem::rename(temporary_, path_, error);
+  std::filesystem::rename(temporary_, destination_, error);
   if (error) {
     std::filesystem::remove(temporary_, error);
     throw engine::InputError("cannot write '" + path_.string() + "': rename failed");
@@ -86,7 +87,9 @@ void append_csv_field(std::string& out, std::string_view text) {
   out += '"';
 }
 
-TrajectoryCsv::TrajectoryCsv(std::filesystem::path path) : file_(std::move(path)) {
+TrajectoryCsv::TrajectoryCsv(std::filesystem::path path,
+                             const std::vector<std::filesystem::path>& inputs)
+    : file_(std::move(path), inputs) {
   buffer_.reserve(kFlushBytes + 4096);
   buffer_.append(kTrajectoryHeader).append("\n");
 }

@@ -11,7 +11,9 @@
 // Errors, by whose they are to fix:
 // - tumble::InputError, one line naming the path: what the user asked for cannot be written
 //   (unknown extension, a directory that does not exist or cannot be written, a folder of other
-//   files that would be replaced, ffmpeg missing from PATH or not executable, ffmpeg failing on
+//   files that would be replaced, an existing output that is not a regular file (a device, a
+//   FIFO: never replaced; a link to a regular file is written through, the link stays), an
+//   input, ffmpeg missing from PATH or not executable, ffmpeg failing on
 //   the output, with its last stderr lines). The app reports these as bad input.
 // - std::invalid_argument / std::logic_error: the caller's mistake (invalid SinkOptions, a
 //   frame of the wrong size, writing to a finished sink).
@@ -22,6 +24,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "render/image.hpp"
 #include "tumble/errors.hpp"
@@ -41,6 +44,9 @@ struct SinkOptions {
   /// Number of the first frame in a PNG sequence's file names (a frame range of a longer
   /// render keeps its absolute numbers: frame_000120.png ...).
   std::size_t first_index = 0;
+  /// The files the output was made from (scene, meshes): an output that is one of them (by
+  /// device and inode, through links too) is refused, never overwritten.
+  std::vector<std::filesystem::path> inputs;
 };
 
 /// Consumes frames in order; see the file comment for the naming rules.

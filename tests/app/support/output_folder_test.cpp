@@ -150,5 +150,57 @@ TEST_F(OutputFolderTest, FinishingWithoutTheTemporaryKeepsTheEarlierOutput) {
   EXPECT_THAT(directory_entries(root_), ElementsAre("out"));
 }
 
+TEST_F(OutputFolderTest, AnEarlierOutputHoldingAnInputOrAnyOtherFileIsRefused) {
+  // Replacing it would have deleted the scene kept beside the report.
+  const fs::path dir = root_ / "out";
+  fs::create_directory(dir);
+  write(dir / "report.md", "# tumble bench\n");
+  write(dir / "results.csv", "a\n");
+  write(dir / "scene.json", "{}");
+  EXPECT_EQ(input_error_of([&] { start_output_folder(dir, kBench); }),
+            "-o: " + dir.string() + " exists and is neither empty nor a previous bench output");
+  EXPECT_EQ(directory_entries(root_), std::vector<std::string>{"out"});
+  EXPECT_EQ(read_text(dir / "scene.json"), "{}");
+}
+
+TEST_F(OutputFolderTest, ALinkToAFolderIsWrittenThroughAndStays) {
+  fs::create_directory(root_ / "real");
+  write(root_ / "real" / "report.md", "# tumble bench\n");
+  write(root_ / "real" / "results.csv", "old\n");
+  fs::create_directory_symlink("real", root_ / "out");
+  const fs::path tmp = start_output_folder(root_ / "out", kBench);
+  EXPECT_EQ(tmp.parent_path(), fs::canonical(root_));
+  write(tmp / "results.csv", "new\n");
+  finish_output_folder(tmp, root_ / "out");
+  EXPECT_TRUE(fs::is_symlink(root_ / "out"));
+  EXPECT_EQ(read_text(root_ / "real" / "results.csv"), "new\n");
+  EXPECT_EQ(directory_entries(root_), (std::vector<std::string>{"out", "real"}));
+}
+
+TEST_F(OutputFolderTest, ALinkToAFileOrNothingIsRefused) {
+  write(root_ / "file", "x");
+  fs::create_symlink("file", root_ / "out");
+  EXPECT_EQ(input_error_of([&] { start_output_folder(root_ / "out", kBench); }),
+            "-o: cannot write '" + (root_ / "out").string() +
+                "': it is a symbolic link to a regular file, not a directory (it is never "
+                "replaced)");
+  fs::create_symlink("nothing", root_ / "dangling");
+  EXPECT_EQ(
+      input_error_of([&] { start_output_folder(root_ / "dangling", kBench); }),
+      "-o: cannot write '" + (root_ / "dangling").string() + "': it is a symbolic link to nothing");
+  EXPECT_EQ(directory_entries(root_), (std::vector<std::string>{"dangling", "file", "out"}));
+}
+
+TEST_F(OutputFolderTest, AStaleTemporaryOfADeadProcessIsRemovedAndALiveOnesKept) {
+  const auto dead = testing::run_command("sh -c 'echo $$'");
+  const std::string pid = dead.out.substr(0, dead.out.find('\n'));
+  fs::create_directory(root_ / (".out.tmp-" + pid));
+  const std::string live = ".out.tmp-" + std::to_string(::getppid());
+  fs::create_directory(root_ / live);
+  const fs::path tmp = start_output_folder(root_ / "out", kBench);
+  finish_output_folder(tmp, root_ / "out");
+  EXPECT_EQ(directory_entries(root_), (std::vector<std::string>{live, "out"}));
+}
+
 }  // namespace
 }  // namespace tumble::app

@@ -19,9 +19,14 @@ namespace tumble::app {
 /// the temporary of an uncommitted file.
 class AtomicFile {
  public:
-  /// Creates the temporary `.NAME.tmp-PID` beside `path`. Throws engine::InputError naming
-  /// `path` when it cannot be written (missing folder, no permission, a directory).
-  explicit AtomicFile(std::filesystem::path path);
+  /// Creates the temporary `.NAME.tmp-PID` beside `path` (beside its target when `path` is a
+  /// symbolic link to a regular file: the target is replaced, the link stays), first removing
+  /// such temporaries of dead processes. Throws engine::InputError naming `path` when it cannot
+  /// be written (missing folder, no permission), when it is anything but a new name or a
+  /// regular file (a directory, a device such as /dev/full, a FIFO: never replaced), or when it
+  /// is the same file as one of `inputs` (the command's scene and meshes).
+  explicit AtomicFile(std::filesystem::path path,
+                      const std::vector<std::filesystem::path>& inputs = {});
   ~AtomicFile();
   AtomicFile(const AtomicFile&) = delete;
   AtomicFile& operator=(const AtomicFile&) = delete;
@@ -38,6 +43,7 @@ class AtomicFile {
   [[noreturn]] void fail(const std::string& what);
 
   std::filesystem::path path_;
+  std::filesystem::path destination_;  ///< what is replaced: path_, or a link's target
   std::filesystem::path temporary_;
   std::FILE* file_ = nullptr;
   bool committed_ = false;
@@ -52,7 +58,8 @@ inline constexpr std::string_view kTrajectoryHeader =
 class TrajectoryCsv {
  public:
   /// Opens the temporary file and writes the header (see AtomicFile for errors).
-  explicit TrajectoryCsv(std::filesystem::path path);
+  explicit TrajectoryCsv(std::filesystem::path path,
+                         const std::vector<std::filesystem::path>& inputs = {});
 
   /// One row per body at time `t`: position, orientation of the user's body frame, velocity,
   /// world angular velocity, angular momentum and energy.

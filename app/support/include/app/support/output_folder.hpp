@@ -17,9 +17,11 @@ struct OutputFolderKind {
 };
 
 /// Checks that `dir` may be written, and creates and returns .DIR.tmp-PID. `dir` may be absent
-/// (its parent must exist), empty, or an earlier output of this kind; anything else is refused,
-/// since replacing it would delete the user's files. Throws engine::InputError naming -o and the
-/// folder.
+/// (its parent must exist), empty, or an earlier output of this kind holding nothing but its
+/// reports, CSVs and plots (.md, .csv, .png, .svg files); anything else is refused, since
+/// replacing it would delete the user's files. A symbolic link to a folder is written through
+/// (the link stays). Temporaries of dead processes (`.DIR.tmp-PID` of a killed run) are removed
+/// first. Throws engine::InputError naming -o and the folder.
 std::filesystem::path start_output_folder(const std::filesystem::path& dir,
                                           const OutputFolderKind& kind);
 
