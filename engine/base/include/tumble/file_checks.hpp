@@ -47,13 +47,15 @@ inline std::filesystem::path checked_output(const std::filesystem::path& target,
                                             const std::vector<std::filesystem::path>& inputs,
                                             bool directory = false) {
   const std::string prefix = "cannot write '" + target.string() + "': ";
+  std::filesystem::path clean = target;  // "frames/" names the link "frames", not its target
+  if (!clean.has_filename()) clean = clean.parent_path();
   struct stat link {};
-  if (::lstat(target.c_str(), &link) != 0) {
+  if (::lstat(clean.c_str(), &link) != 0) {
     if (errno == ENOENT || errno == ENOTDIR) return target;  // a new name
     throw InputError(prefix + path_error(errno));
   }
   struct stat status = link;
-  if (S_ISLNK(link.st_mode) && ::stat(target.c_str(), &status) != 0) {
+  if (S_ISLNK(link.st_mode) && ::stat(clean.c_str(), &status) != 0) {
     throw InputError(prefix + (errno == ENOENT ? std::string("it is a symbolic link to nothing")
                                                : path_error(errno)));
   }
@@ -73,7 +75,7 @@ inline std::filesystem::path checked_output(const std::filesystem::path& target,
   }
   if (!S_ISLNK(link.st_mode)) return target;
   std::error_code error;
-  std::filesystem::path resolved = std::filesystem::canonical(target, error);
+  std::filesystem::path resolved = std::filesystem::canonical(clean, error);
   if (error) throw InputError(prefix + error.message());
   return resolved;
 }
