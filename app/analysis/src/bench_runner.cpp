@@ -96,7 +96,8 @@ std::vector<int> available_cores() {
 std::vector<CaseResult> run_cases(
     const std::vector<BenchScene>& scenes, const std::vector<BenchCase>& cases, int repeat,
     std::size_t workers,
-    const std::function<void(std::size_t, const CaseResult&, std::size_t)>& done) {
+    const std::function<void(std::size_t, const CaseResult&, std::size_t)>& done,
+    const std::function<bool()>& stop) {
   const std::vector<int> cores = available_cores();
   workers = std::clamp<std::size_t>(workers, 1, cores.size());
   std::vector<CaseResult> results(cases.size());
@@ -110,6 +111,10 @@ std::vector<CaseResult> run_cases(
     const int core = cores[worker];
     const bool pinned = pin_to_core(core);
     for (std::size_t i = next++; i < cases.size(); i = next++) {
+      if (stop && stop()) {
+        next = cases.size();
+        return;
+      }
       CaseResult result;
       try {
         result = run_case(scenes[cases[i].scene], cases[i], repeat);

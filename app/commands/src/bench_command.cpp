@@ -2,6 +2,7 @@
 #include "app/commands/bench_command.hpp"
 
 #include "app/scene/option_lists.hpp"
+#include "app/support/interrupt_guard.hpp"
 #include "app/support/output_folder.hpp"
 #include "app/support/printf_number.hpp"
 
@@ -242,7 +243,11 @@ std::string case_line(const BenchScene& scene, const BenchCase& c, const CaseRes
   return line + "orientation error " + printf_number(r.errors.orientation_final, "%.2e") + " rad";
 }
 
-int bench(const BenchOptions& options, std::ostream& out, std::ostream& err) {
+/// Thrown out of a run that caught SIGINT or SIGTERM, to remove its outputs on the way out.
+struct Interrupted {};
+
+int bench(const BenchOptions& options, const InterruptGuard& guard, std::ostream& out,
+          std::ostream& err) {
   // Everything the user typed is checked before any output is created, the cheap checks
   // before the scenes' meshes are read.
   BenchOutcome outcome;
@@ -260,6 +265,7 @@ int bench(const BenchOptions& options, std::ostream& out, std::ostream& err) {
       } catch (const InputError& error) {
         throw InputError(scene.file.string() + ": " + error.what());
       }
+      if (guard.interrupted()) throw Interrupted{};
     }
 
     // The cases, one line (or a bar on a terminal) each.
@@ -279,14 +285,21 @@ int bench(const BenchOptions& options, std::ostream& out, std::ostream& err) {
             err << "tumble bench: [" << finished << "/" << total << "] "
                 << case_line(outcome.scenes[outcome.cases[i].scene], outcome.cases[i], r) << "\n";
           }
-        });
+        },
+        [&] { return guard.interrupted(); });
     bar.clear();
+    if (guard.interrupted()) throw Interrupted{};
 
     // Outputs, then the directory into place.
     write_results_csv(outcome, tmp / "results.csv");
     write_plots(outcome, tmp);
     write_report(outcome, tmp / "report.md");
+    if (guard.interrupted()) throw Interrupted{};
     finish_output_folder(tmp, options.output);
+  } catch (const Interrupted&) {
+    std::error_code ignored;
+    std::filesystem::remove_all(tmp, ignored);
+    return kExitInterrupted;
   } catch (...) {
     std::error_code ignored;
     std::filesystem::remove_all(tmp, ignored);
@@ -335,7 +348,18 @@ CLI::App& add_bench_command(CLI::App& cli, BenchOptions& options) {
 }
 
 int run_bench(const BenchOptions& options, std::ostream& out, std::ostream& err) {
-  return run_guarded("bench", err, [&] { return bench(options, out, err); });
+  const InterruptGuard guard;
+  const auto interrupted = [&] {
+    guard.report(err, "bench", options.output.string());
+    return kExitInterrupted;
+  };
+  return run_guarded(
+      "bench", err,
+      [&] {
+        const int status = bench(options, guard, out, err);
+        return status == kExitInterrupted ? interrupted() : status;
+      },
+      [&] { return guard.interrupted() ? interrupted() : -1; });
 }
 
 }  // namespace tumble::app

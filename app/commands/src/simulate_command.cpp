@@ -12,6 +12,7 @@
 #include "app/analysis/blow_up.hpp"
 #include "app/scene/scene.hpp"
 #include "app/support/csv_writer.hpp"
+#include "app/support/interrupt_guard.hpp"
 #include "app/support/printf_number.hpp"
 #include "engine/input_error.hpp"
 #include "engine/integrators.hpp"
@@ -40,6 +41,29 @@ void apply_options(const SimulateOptions& options, SceneDescription& scene) {
       !(positive_option(*options.blowup_factor, "--blowup-factor") > 1.0)) {
     throw InputError("--blowup-factor: expected a growth factor > 1, got " +
                      printf_number(*options.blowup_factor, "%.17g"));
+  }
+}
+
+/// Refuses, unless --allow-long, a run of more than kMaxStepsWithoutAllowLong steps or a CSV
+/// estimated beyond kMaxCsvBytes, saying how many.
+void check_run_length(const SimulateOptions& options, const SceneDescription& scene) {
+  if (options.allow_long) return;
+  const double steps = std::ceil(scene.duration / scene.dt);
+  const std::string what = printf_number(steps, "%.3g") + " steps (duration " +
+                           printf_number(scene.duration) + " s / dt " + printf_number(scene.dt) +
+                           " s)";
+  if (steps > kMaxStepsWithoutAllowLong) {
+    throw InputError((options.dt ? std::string("--dt") : scene.file.string() + ": dt") + ": " +
+                     what + ", more than " + printf_number(kMaxStepsWithoutAllowLong, "%.0e") +
+                     "; give --allow-long to run it");
+  }
+  const double rows = (std::floor(steps / static_cast<double>(options.every)) + 2.0) *
+                      static_cast<double>(scene.bodies.size());
+  if (options.csv && rows * kCsvRowBytes > kMaxCsvBytes) {
+    throw InputError("--csv: " + what + " write about " + printf_number(rows, "%.3g") + " rows, " +
+                     printf_number(rows * kCsvRowBytes / 1e9, "%.3g") + " GB, more than " +
+                     printf_number(kMaxCsvBytes / 1e9, "%.3g") +
+                     " GB; give --every N or --allow-long");
   }
 }
 
@@ -125,16 +149,18 @@ engine::Simulation build_simulation(const SimulateOptions& options, const SceneD
 }
 
 /// Steps to the end or the blow-up, watching each body's invariants every step and writing
-/// every `every`th step (and the first and the last) to `csv` when there is one. Returns the
-/// time spent in the steps alone.
+/// every `every`th step (and the first and the last) to `csv` when there is one, until `guard`
+/// reports a signal. Returns the time spent in the steps alone.
 std::chrono::steady_clock::duration run_and_write(engine::Simulation& simulation,
                                                   std::vector<InvariantMonitor>& monitors,
-                                                  TrajectoryCsv* csv, std::size_t every) {
+                                                  TrajectoryCsv* csv, std::size_t every,
+                                                  const InterruptGuard& guard) {
   const auto& bodies = simulation.bodies();
   if (csv) csv->write_rows(simulation.time(), bodies, simulation.states());
   std::size_t last_written = 0;
   std::chrono::steady_clock::duration stepping{};
   while (!simulation.finished()) {
+    if (simulation.steps() % 64 == 0 && guard.interrupted()) return stepping;
     const auto start = std::chrono::steady_clock::now();
     const bool good = simulation.step();
     stepping += std::chrono::steady_clock::now() - start;
@@ -175,15 +201,27 @@ std::vector<BodySummary> body_summaries(const engine::Simulation& simulation,
   return summaries;
 }
 
-/// Runs the scene, filling `summary`; returns the exit status.
-int simulate(const SimulateOptions& options, RunSummary& summary, std::ostream& err) {
+/// The files a run reads: the scene and its meshes (never overwritten by its CSV).
+std::vector<std::filesystem::path> scene_inputs(const SceneDescription& scene) {
+  std::vector<std::filesystem::path> inputs = {scene.file};
+  for (const BodyDescription& body : scene.bodies) {
+    if (body.mesh) inputs.push_back(*body.mesh);
+  }
+  return inputs;
+}
+
+/// Runs the scene, filling `summary`; returns the exit status (kExitInterrupted, with nothing
+/// written, when `guard` caught a signal).
+int simulate(const SimulateOptions& options, const InterruptGuard& guard, RunSummary& summary,
+             std::ostream& err) {
   // Scene and options: everything is checked before any output is created.
   SceneDescription scene = load_scene(options.scene);
   apply_options(options, scene);
+  check_run_length(options, scene);
 
   // The CSV's temporary file is created now, so an unwritable path fails before the run.
   std::optional<TrajectoryCsv> csv;
-  if (options.csv) csv.emplace(*options.csv);
+  if (options.csv) csv.emplace(*options.csv, scene_inputs(scene));
 
   // Compile (import meshes), build the simulation and start watching its invariants.
   engine::Simulation simulation = build_simulation(options, scene);
@@ -200,7 +238,8 @@ int simulate(const SimulateOptions& options, RunSummary& summary, std::ostream& 
   }
 
   const auto stepping = run_and_write(simulation, monitors, csv ? &*csv : nullptr,
-                                      static_cast<std::size_t>(options.every));
+                                      static_cast<std::size_t>(options.every), guard);
+  if (guard.interrupted()) return kExitInterrupted;  // the CSV's temporary goes with `csv`
   if (csv) {
     csv->commit();
     summary.csv = csv->path();
@@ -251,6 +290,8 @@ CLI::App& add_simulate_command(CLI::App& cli, SimulateOptions& options) {
   simulate.add_option_function<double>(
       "--blowup-factor", [&](double value) { options.blowup_factor = value; },
       "Energy or |L| growth F that stops the run as a blow-up (default 10)");
+  simulate.add_flag("--allow-long", options.allow_long,
+                    "Run more than 1e9 steps, or write a CSV of more than 10 GB");
   simulate.add_flag("--list-integrators", options.list_integrators,
                     "List the integrators with their order and properties, then exit");
   return simulate;
@@ -326,16 +367,26 @@ int run_simulate(const SimulateOptions& options, std::ostream& out, std::ostream
     err << "tumble simulate: error: a SCENE file is required (or --list-integrators)\n";
     return kExitInputError;
   }
-  return run_guarded("simulate", err, [&] {
-    RunSummary summary;
-    const int status = simulate(options, summary, err);
-    if (options.json) {
-      out << summary_to_json(summary).dump(2) << "\n";
-    } else {
-      out << format_summary(summary);
-    }
-    return status;
-  });
+  const InterruptGuard guard;
+  const std::string output = options.csv ? options.csv->string() : "";
+  const auto interrupted = [&] {
+    guard.report(err, "simulate", output);
+    return kExitInterrupted;
+  };
+  return run_guarded(
+      "simulate", err,
+      [&] {
+        RunSummary summary;
+        const int status = simulate(options, guard, summary, err);
+        if (status == kExitInterrupted) return interrupted();
+        if (options.json) {
+          out << summary_to_json(summary).dump(2) << "\n";
+        } else {
+          out << format_summary(summary);
+        }
+        return status;
+      },
+      [&] { return guard.interrupted() ? interrupted() : -1; });
 }
 
 }  // namespace tumble::app

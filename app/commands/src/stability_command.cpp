@@ -20,6 +20,7 @@
 #include "app/analysis/stability_suite.hpp"
 #include "app/commands/exit_status.hpp"
 #include "app/scene/option_lists.hpp"
+#include "app/support/interrupt_guard.hpp"
 #include "app/support/output_folder.hpp"
 #include "engine/input_error.hpp"
 #include "engine/integrators.hpp"
@@ -88,19 +89,24 @@ int list_suites(std::ostream& out) {
 }
 
 /// Runs every case under every integrator at each of its dts, in the order the outputs read
-/// them (stability_report.hpp), with one progress line per case on `err`.
+/// them (stability_report.hpp), with one progress line per case on `err`. Stops early, with
+/// the runs so far, when `guard` caught a signal.
 std::vector<StabilityRun> run_sweep(const std::vector<StabilityCase>& cases,
                                     const std::vector<engine::IntegratorInfo>& integrators,
-                                    std::ostream& err) {
+                                    const InterruptGuard& guard, std::ostream& err) {
   std::vector<StabilityRun> runs;
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const StabilityCase& c = cases[k];
     err << "tumble stability: [" << k + 1 << "/" << cases.size() << "] " << c.name << ": "
         << integrators.size() * c.dts.size() << " runs\n"
         << std::flush;
+    if (guard.interrupted()) return runs;
     const StabilityReference reference = stability_reference(c);
     for (const engine::IntegratorInfo& info : integrators) {
-      for (const double dt : c.dts) runs.push_back(run_stability_case(c, info, dt, reference));
+      for (const double dt : c.dts) {
+        if (guard.interrupted()) return runs;
+        runs.push_back(run_stability_case(c, info, dt, reference));
+      }
     }
   }
   return runs;
@@ -119,7 +125,8 @@ void print_summary(const std::vector<StabilityRun>& runs, std::size_t case_count
       << "stability.svg\n";
 }
 
-int stability(const StabilityOptions& options, std::ostream& out, std::ostream& err) {
+int stability(const StabilityOptions& options, const InterruptGuard& guard, std::ostream& out,
+              std::ostream& err) {
   // Options, cases and the output folder are checked before any run.
   if (!options.output) throw InputError("-o DIR is required (or --list-suites)");
   const std::vector<engine::IntegratorInfo> integrators = parse_integrators(options.integrators);
@@ -129,13 +136,23 @@ int stability(const StabilityOptions& options, std::ostream& out, std::ostream& 
   const fs::path output = *options.output;
   const fs::path temporary = start_output_folder(output, kStabilityOutput);
   try {
-    const std::vector<StabilityRun> runs = run_sweep(cases, integrators, err);
+    const std::vector<StabilityRun> runs = run_sweep(cases, integrators, guard, err);
+    if (guard.interrupted()) {
+      std::error_code ignored;
+      fs::remove_all(temporary, ignored);
+      return kExitInterrupted;
+    }
 
     // The outputs, then the folder into place.
     write_file(temporary / "stability.csv", stability_csv(suite, cases, runs));
     write_file(temporary / "stability.md", stability_markdown(suite, cases, integrators, runs));
     draw_heat_map(stability_heat_map(cases, integrators, runs), temporary / "stability.png",
                   temporary / "stability.svg");
+    if (guard.interrupted()) {
+      std::error_code ignored;
+      fs::remove_all(temporary, ignored);
+      return kExitInterrupted;
+    }
     finish_output_folder(temporary, output);
     print_summary(runs, cases.size(), output, out);
   } catch (...) {
@@ -179,9 +196,20 @@ CLI::App& add_stability_command(CLI::App& cli, StabilityOptions& options) {
 }
 
 int run_stability(const StabilityOptions& options, std::ostream& out, std::ostream& err) {
-  return run_guarded("stability", err, [&] {
-    return options.list_suites ? list_suites(out) : stability(options, out, err);
-  });
+  const InterruptGuard guard;
+  const std::string output = options.output ? options.output->string() : "";
+  const auto interrupted = [&] {
+    guard.report(err, "stability", output);
+    return kExitInterrupted;
+  };
+  return run_guarded(
+      "stability", err,
+      [&] {
+        if (options.list_suites) return list_suites(out);
+        const int status = stability(options, guard, out, err);
+        return status == kExitInterrupted ? interrupted() : status;
+      },
+      [&] { return guard.interrupted() ? interrupted() : -1; });
 }
 
 }  // namespace tumble::app

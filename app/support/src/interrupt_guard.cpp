@@ -34,6 +34,13 @@ const char* InterruptGuard::signal_name() const {
   return interrupt_signal == SIGTERM ? "SIGTERM" : "SIGINT";
 }
 
+void InterruptGuard::report(std::ostream& err, std::string_view command,
+                            const std::string& output) const {
+  err << "tumble " << command << ": interrupted by " << signal_name();
+  if (!output.empty()) err << "; nothing written to '" << output << "'";
+  err << "\n";
+}
+
 void InterruptGuard::install(int signal, struct sigaction& old, bool& installed) {
   if (sigaction(signal, nullptr, &old) != 0 || old.sa_handler == SIG_IGN) return;
   struct sigaction action {};

@@ -390,7 +390,8 @@ TEST_F(SimulateCommand, StiffSpringBlowsUpUnderSymplecticEuler) {
 TEST_F(SimulateCommand, UnwritableCsvPathFailsBeforeSimulating) {
   const std::string missing = path("no/such/folder/out.csv");
   // A run of 1e8 steps would take most of a minute: the error must come first.
-  const auto result = simulate(write_scene(free_body_scene(100.0, 1e-6)) + " --csv " + missing);
+  const auto result =
+      simulate(write_scene(free_body_scene(100.0, 1e-6)) + " --every 100 --csv " + missing);
   EXPECT_EQ(result.status, 1);
   EXPECT_THAT(result.err, HasSubstr("cannot write '" + missing + "'"));
   EXPECT_EQ(result.out, "");

@@ -61,10 +61,12 @@ std::vector<int> available_cores();
 
 /// Runs every case on min(jobs, cores) workers, each pinned to its own core, so no two timed
 /// loops share a core. `done(index, result, finished_count)` is called (serialised) after each
-/// case. Returns the results in the order of `cases`.
+/// case. Returns the results in the order of `cases`; when `stop` returns true (checked before
+/// each case: an interrupt), the cases not started are left out and their results stay empty.
 std::vector<CaseResult> run_cases(
     const std::vector<BenchScene>& scenes, const std::vector<BenchCase>& cases, int repeat,
     std::size_t workers,
-    const std::function<void(std::size_t, const CaseResult&, std::size_t)>& done);
+    const std::function<void(std::size_t, const CaseResult&, std::size_t)>& done,
+    const std::function<bool()>& stop = {});
 
 }  // namespace tumble::app

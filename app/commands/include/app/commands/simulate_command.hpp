@@ -31,7 +31,15 @@ struct SimulateOptions {
   long long every = 1;  ///< write every Nth step (the first and the last always)
   bool json = false;
   bool list_integrators = false;
+  bool allow_long = false;  ///< run beyond kMaxStepsWithoutAllowLong steps or kMaxCsvBytes of CSV
 };
+
+/// Runs longer than this many steps, or CSVs estimated larger than this many bytes, are refused
+/// unless --allow-long is given (a mistyped --dt 1e-9 is 2e10 steps and 8 TB of CSV).
+inline constexpr double kMaxStepsWithoutAllowLong = 1e9;
+inline constexpr double kMaxCsvBytes = 10e9;
+/// The estimated size of one CSV row (19 fields of up to 24 characters, a short body name).
+inline constexpr double kCsvRowBytes = 400.0;
 
 /// Adds the `simulate` subcommand and its options to `cli`, filling `options` when parsed.
 CLI::App& add_simulate_command(CLI::App& cli, SimulateOptions& options);

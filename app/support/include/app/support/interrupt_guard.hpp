@@ -4,6 +4,10 @@
 
 #include <signal.h>
 
+#include <ostream>
+#include <string>
+#include <string_view>
+
 namespace tumble::app {
 
 /// Catches SIGINT and SIGTERM for its lifetime and remembers that one came, for a frame loop to
@@ -18,6 +22,9 @@ class InterruptGuard {
 
   bool interrupted() const;
   const char* signal_name() const;
+  /// Writes the one line of an interrupted command, "tumble COMMAND: interrupted by SIGINT;
+  /// nothing written to 'OUTPUT'" (without the clause when `output` is empty).
+  void report(std::ostream& err, std::string_view command, const std::string& output) const;
 
  private:
   static void install(int signal, struct sigaction& old, bool& installed);
