@@ -146,7 +146,8 @@ TEST_F(AtomicFileTest, AMissingFolderIsAnInputErrorNamingThePath) {
 
 TEST_F(AtomicFileTest, ADirectoryIsAnInputErrorNamingIt) {
   EXPECT_EQ(input_error_of([&] { AtomicFile file(dir_); }),
-            "cannot write '" + dir_.string() + "': it is a directory");
+            "cannot write '" + dir_.string() +
+                "': it is a directory, not a regular file (it is never replaced)");
   EXPECT_TRUE(testing::directory_entries(dir_).empty());
 }
 
