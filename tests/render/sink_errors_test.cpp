@@ -319,6 +319,23 @@ TEST(SinkErrors, ALinkToAFileOrFolderIsWrittenThroughAndStays) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(SinkErrors, AnInputGivenAsTheOutputIsRefusedThroughALinkToo) {
+  const auto dir = tumble::testing::fresh_directory("sink_input");
+  std::ofstream(dir / "scene.gif") << "an input";
+  std::filesystem::create_symlink("scene.gif", dir / "out.gif");
+  SinkOptions options = small_options();
+  options.inputs = {dir / "scene.gif"};
+  for (const char* name : {"scene.gif", "out.gif"}) {
+    EXPECT_THAT([&] { open_image_sink(dir / name, options); },
+                ThrowsMessage<InputError>(
+                    HasSubstr("cannot write '" + (dir / name).string() + "': it is the input '" +
+                              (dir / "scene.gif").string() + "' (an input is never overwritten)")));
+  }
+  EXPECT_EQ(tumble::testing::read_text(dir / "scene.gif"), "an input");
+  EXPECT_EQ(directory_entries(dir), (std::vector<std::string>{"out.gif", "scene.gif"}));
+  std::filesystem::remove_all(dir);
+}
+
 TEST(SinkErrors, AStaleTemporaryOfADeadProcessIsRemoved) {
   const auto dir = tumble::testing::fresh_directory("sink_stale");
   const auto dead = tumble::testing::run_command("sh -c 'echo $$'");
