@@ -109,7 +109,7 @@ void require(const std::filesystem::path& file, const std::string& format,
              const std::string& declared, std::uint64_t needed, std::uint64_t available,
              const char* unit) {
   if (needed <= available) return;
-  fail(file, "the " + format + " header declares " + declared + ", which need at least " +
+  fail(file, "the " + format + " header declares " + declared + ": at least " +
                  (needed == kMax ? std::string("2^64") : std::to_string(needed)) + " " + unit +
                  " after the header, but the file has " + std::to_string(available) +
                  " (truncated, or the counts are wrong)");
@@ -277,7 +277,8 @@ std::optional<DeclaredFaces> check_ply(const std::filesystem::path& file, std::u
         (declared.empty() ? "" : ", ") + std::to_string(element.count) + " '" + element.name + "'";
     if (element.name == "face") faces = DeclaredFaces{element.count, "PLY header"};
   }
-  declared += header->elements.size() == 1 ? " element" : " elements";
+  const bool one = header->elements.size() == 1 && header->elements[0].count == 1;
+  declared += one ? " element" : " elements";
   const std::uint64_t available = size - header->data_offset;
   require(file, "PLY", declared, bytes, available + (header->ascii ? 1 : 0), "bytes");
   if (header->ascii) {

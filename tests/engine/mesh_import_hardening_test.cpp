@@ -112,7 +112,7 @@ TEST(MeshImportCounts, OffDeclaringMoreVerticesThanItsBytesIsRefusedAtOnce) {
   const double took = seconds_of([&] { message = input_error_of([&] { import_mesh(file); }); });
   EXPECT_LT(took, 0.5);
   EXPECT_EQ(message, file.string() +
-                         ": the OFF header declares 353535235358 vertices and 6 faces, which need "
+                         ": the OFF header declares 353535235358 vertices and 6 faces: "
                          "at least 2121211412160 bytes after the header, but the file has 25 "
                          "(truncated, or the counts are wrong)");
 }
@@ -123,7 +123,7 @@ TEST(MeshImportCounts, TruncatedOffIsRefusedByItsLineCount) {
   fixtures::write_file(file, "OFF\n# a comment\n4 4 0\n" + kTetrahedronVertices + "3 0 2 1\n\n");
   EXPECT_EQ(input_error_of([&] { import_mesh(file); }),
             file.string() +
-                ": the OFF header declares 4 vertices and 4 faces, which need at least 8 lines "
+                ": the OFF header declares 4 vertices and 4 faces: at least 8 lines "
                 "after the header, but the file has 5 (truncated, or the counts are wrong)");
 }
 
@@ -134,7 +134,7 @@ TEST(MeshImportCounts, TruncatedAsciiPlyIsRefusedByItsLineCount) {
   fixtures::write_file(file, ply_header(4, 4, "ascii") + kTetrahedronVertices + "3 0 2 1\n");
   EXPECT_EQ(input_error_of([&] { import_mesh(file); }),
             file.string() +
-                ": the PLY header declares 4 'vertex', 4 'face' elements, which need at least 8 "
+                ": the PLY header declares 4 'vertex', 4 'face' elements: at least 8 "
                 "lines after the header, but the file has 5 (truncated, or the counts are "
                 "wrong)");
 }
@@ -148,8 +148,8 @@ TEST(MeshImportCounts, BinaryPlyDeclaringMoreThanItsBytesIsRefusedAtOnce) {
   const double took = seconds_of([&] { message = input_error_of([&] { import_mesh(file); }); });
   EXPECT_LT(took, 0.5);
   EXPECT_EQ(message, file.string() +
-                         ": the PLY header declares 2000000000 'vertex', 1 'face' elements, which "
-                         "need at least 24000000001 bytes after the header, but the file has 48 "
+                         ": the PLY header declares 2000000000 'vertex', 1 'face' elements: at "
+                         "least 24000000001 bytes after the header, but the file has 48 "
                          "(truncated, or the counts are wrong)");
 }
 
@@ -170,6 +170,28 @@ TEST(MeshImportCounts, TruncatedBinaryStlClaimingABillionTrianglesGetsTumblesWor
                     "takes 50000000084 bytes, but the file has 684 (truncated)")
           << header;
     }
+  }
+}
+
+TEST(MeshImportCounts, AsciiStlWithAUtf8NameIsNotTakenForATruncatedBinaryOne) {
+  // Bytes above 127 after "solid" (a name in UTF-8), and a size that is no binary STL's.
+  TempDir dir;
+  const auto file = dir / "wuerfel.stl";
+  std::string text = "solid W\xc3\xbcrfel\n";
+  const char* const faces[4][3] = {{"0 0 0", "0 1 0", "1 0 0"},
+                                   {"0 0 0", "1 0 0", "0 0 1"},
+                                   {"0 0 0", "0 0 1", "0 1 0"},
+                                   {"1 0 0", "0 1 0", "0 0 1"}};
+  for (const auto& face : faces) {
+    text += "facet normal 0 0 0\nouter loop\n";
+    for (const char* corner : face) text += std::string("vertex ") + corner + "\n";
+    text += "endloop\nendfacet\n";
+  }
+  fixtures::write_file(file, text + "endsolid W\xc3\xbcrfel\n");
+  for (const StlReader reader : {StlReader::tumble, StlReader::assimp}) {
+    const MeshReport report = analyze_mesh(import_mesh(file, nullptr, reader), {}, file.string());
+    EXPECT_EQ(report.triangles, 4u);
+    EXPECT_NEAR(report.volume, 1.0 / 6.0, 1e-15);
   }
 }
 
