@@ -11,6 +11,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <system_error>
 
 #if defined(__unix__) || defined(__APPLE__)
@@ -167,6 +168,37 @@ std::optional<BinaryStl> read_binary_stl(const std::filesystem::path& file, std:
     }
   });
   return result;
+}
+
+void check_binary_stl_size(const std::filesystem::path& file, std::uintmax_t size) {
+  if (!has_stl_extension(file)) return;
+  const std::unique_ptr<std::FILE, CloseFile> stream(std::fopen(file.string().c_str(), "rb"));
+  if (!stream) fail(file, "cannot be opened for reading");
+  constexpr std::size_t kAsciiProbe = 500;  // the bytes assimp 5.2 tests for ASCII
+  std::array<unsigned char, kHeaderBytes + kAsciiProbe> head{};
+  const std::size_t got = std::fread(head.data(), 1, head.size(), stream.get());
+  std::size_t start = 0;
+  while (start < got && std::isspace(head[start])) ++start;
+  const bool solid = got >= start + 6 && std::memcmp(head.data() + start, "solid", 5) == 0;
+  const bool text = std::all_of(
+      head.begin() + static_cast<std::ptrdiff_t>(start),
+      head.begin() + static_cast<std::ptrdiff_t>(std::min(got, start + std::size_t{kAsciiProbe})),
+      [](unsigned char c) { return c != 0 && c <= 127; });
+  // A name in UTF-8 ("solid Würfel") is not binary: its facets follow.
+  const std::string_view probe(reinterpret_cast<const char*>(head.data()), got);
+  const bool facets = probe.find("facet") != std::string_view::npos ||
+                      probe.find("endsolid") != std::string_view::npos;
+  if (solid && (text || facets)) return;  // ASCII: assimp's to read
+  if (got < kHeaderBytes) {
+    fail(file, "cannot be read as a mesh: neither ASCII STL nor binary STL (" +
+                   std::to_string(size) + " bytes, less than a binary STL's 84-byte header)");
+  }
+  const std::uint64_t triangles = little_uint32(head.data() + 80);
+  const std::uint64_t expected = kHeaderBytes + kRecordBytes * triangles;
+  if (size == expected) return;
+  fail(file, "cannot be read as a mesh: a binary STL declaring " + std::to_string(triangles) +
+                 " triangles takes " + std::to_string(expected) + " bytes, but the file has " +
+                 std::to_string(size) + (size < expected ? " (truncated)" : " (not one STL?)"));
 }
 
 }  // namespace tumble::engine::detail

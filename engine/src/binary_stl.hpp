@@ -37,4 +37,13 @@ struct BinaryStl {
 /// `size` is the file's size in bytes, which the caller has already asked for.
 std::optional<BinaryStl> read_binary_stl(const std::filesystem::path& file, std::uintmax_t size);
 
+/// Refuses a file named *.stl that is neither ASCII nor of the size its triangle count gives a
+/// binary STL: a truncated or padded binary STL, which assimp would reject in its own words or
+/// read as an empty ASCII file. ASCII is "solid" after leading blanks (assimp 5.2 decides by that
+/// alone) with no NUL byte and none above 127 in the first 500 (or a "facet" there, for names in
+/// UTF-8): a binary header may begin with "solid" too, but its count and coordinates are
+/// rarely text. Throws InputError naming the
+/// file, the declared count and both sizes.
+void check_binary_stl_size(const std::filesystem::path& file, std::uintmax_t size);
+
 }  // namespace tumble::engine::detail

@@ -246,8 +246,9 @@ TopologyPass check_topology(const TriangleMesh& mesh, const Eigen::Vector3d& ref
   report.inconsistent_edges = topology.inconsistent_edges;
   report.non_manifold_edges = topology.non_manifold_edges;
   report.watertight = topology.closed();
-  if (topology.non_manifold_edges > 0) {
-    report.warnings.push_back(plural(topology.non_manifold_edges, "edge") +
+  const std::size_t paired = topology.non_manifold_edges - topology.unpaired_non_manifold_edges;
+  if (paired > 0 && topology.closed()) {
+    report.warnings.push_back(plural(paired, "edge") +
                               " shared by more than two triangles (closed, but not a manifold)");
   }
   return pass;
@@ -266,12 +267,18 @@ void shell_properties(const TriangleMesh& mesh, const Eigen::Vector3d& reference
   report.mass_properties = mass_properties(integrals, reference, report.density * report.thickness);
 }
 
-/// A closed surface must have no boundary and a consistent winding.
+/// A closed surface must have no boundary, pair up the uses of every edge shared by more than
+/// two triangles, and have a consistent winding.
 void require_closed_and_consistent(const Topology& topology, const std::string& source) {
   if (topology.boundary_edges > 0) {
     fail(source, "the surface is open (" + plural(topology.boundary_edges, "boundary edge") +
                      "), so it encloses no volume; for a thin sheet or open surface use "
                      "--shell THICKNESS");
+  }
+  if (topology.unpaired_non_manifold_edges > 0) {
+    fail(source, "not a manifold: " + plural(topology.unpaired_non_manifold_edges, "edge") +
+                     " shared by three or more triangles whose directions do not pair up (as "
+                     "many one way as the other), so the surface does not bound a volume");
   }
   if (topology.inconsistent_edges > 0) {
     fail(source, "inconsistent winding: " + plural(topology.inconsistent_edges, "edge") +

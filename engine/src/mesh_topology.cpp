@@ -119,6 +119,7 @@ void count_edge_uses(const TriangleMesh& mesh, Topology& topology) {
     throw std::length_error("analyze_topology: more than 2^31 vertices");
   }
   topology.boundary_edges = topology.inconsistent_edges = topology.non_manifold_edges = 0;
+  topology.unpaired_non_manifold_edges = 0;
 
   // Bucket each edge under its smaller vertex: the entry is (larger vertex << 1 | reversed).
   // Counting sort with 32-bit offsets, filled back to front so that the offsets end up at each
@@ -159,10 +160,11 @@ void count_edge_uses(const TriangleMesh& mesh, Topology& topology) {
       for (; run != end && (*run >> 1) == other; ++run) ((*run & 1u) ? backward : forward)++;
       if (forward + backward == 1) {
         ++topology.boundary_edges;
-      } else if (forward != backward) {
-        ++topology.inconsistent_edges;
       } else if (forward + backward > 2) {
         ++topology.non_manifold_edges;
+        if (forward != backward) ++topology.unpaired_non_manifold_edges;
+      } else if (forward != backward) {
+        ++topology.inconsistent_edges;
       }
     }
   };

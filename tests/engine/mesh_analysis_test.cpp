@@ -96,6 +96,19 @@ TEST(MeshChecks, OneFlippedFaceIsInconsistentWinding) {
                                     HasSubstr("3 edges used twice in the same direction")));
 }
 
+TEST(MeshChecks, EdgesOfThreeTrianglesAreNonManifoldNotInconsistentWinding) {
+  // One face of the box again, reversed (a stray copy as some exporters leave): its three edges
+  // are each used by three triangles, twice one way and once the other. That is no winding
+  // error between two neighbours; it used to be called "inconsistent winding".
+  TriangleMesh mesh = box_mesh({1.0, 2.0, 3.0});
+  const auto copy = mesh.triangles[5];
+  mesh.triangles.push_back({copy[0], copy[2], copy[1]});
+  EXPECT_EQ(error_of(mesh),
+            "part.stl: not a manifold: 3 edges shared by three or more triangles whose "
+            "directions do not pair up (as many one way as the other), so the surface does not "
+            "bound a volume");
+}
+
 TEST(MeshChecks, ClosedFlatSurfaceHasZeroVolume) {
   // A square with both sides: every edge used once each way, so closed, but flat.
   const TriangleMesh square{{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}},

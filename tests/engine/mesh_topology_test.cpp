@@ -213,13 +213,32 @@ TEST(AnalyzeTopology, TwoTetrahedraSharingAnEdgeAreNonManifold) {
   EXPECT_EQ(topology.parts, 1u);
 }
 
-TEST(AnalyzeTopology, ThreeTrianglesOnOneEdgeAreInconsistent) {
-  // Three fins on the edge 0-1: directions 0->1, 1->0, 0->1 do not balance.
+TEST(AnalyzeTopology, ThreeTrianglesOnOneEdgeAreNonManifoldNotInconsistent) {
+  // Three fins on the edge 0-1: directions 0->1, 1->0, 0->1 do not balance. An edge of three
+  // triangles is a non-manifold edge, whatever its directions; it used to be counted as
+  // inconsistent winding.
   TriangleMesh mesh{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, -1, -1}},
                     {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}}};
   const Topology topology = analyze_topology(mesh);
-  EXPECT_EQ(topology.inconsistent_edges, 1u);
+  EXPECT_EQ(topology.inconsistent_edges, 0u);
+  EXPECT_EQ(topology.non_manifold_edges, 1u);
+  EXPECT_EQ(topology.unpaired_non_manifold_edges, 1u);
   EXPECT_EQ(topology.boundary_edges, 6u);
+  EXPECT_FALSE(topology.closed());
+}
+
+TEST(AnalyzeTopology, AStrayReversedCopyOfAFaceMakesThreeUnpairedNonManifoldEdges) {
+  // No edge is open, yet each edge of the copied face is used twice one way and once the
+  // other: three non-manifold edges that do not pair up, so the surface is not closed.
+  TriangleMesh mesh = tetrahedron();
+  const Triangle face = mesh.triangles[0];
+  mesh.triangles.push_back({face[0], face[2], face[1]});
+  const Topology topology = analyze_topology(mesh);
+  EXPECT_EQ(topology.non_manifold_edges, 3u);
+  EXPECT_EQ(topology.unpaired_non_manifold_edges, 3u);
+  EXPECT_EQ(topology.inconsistent_edges, 0u);
+  EXPECT_EQ(topology.boundary_edges, 0u);
+  EXPECT_FALSE(topology.closed());
 }
 
 TEST(AnalyzeTopology, PartsNumberedInOrderOfFirstTriangle) {
@@ -294,10 +313,11 @@ Topology edge_counts_by_map(const TriangleMesh& mesh) {
     const auto [forward, backward] = use;
     if (forward + backward == 1) {
       ++counts.boundary_edges;
-    } else if (forward != backward) {
-      ++counts.inconsistent_edges;
     } else if (forward + backward > 2) {
       ++counts.non_manifold_edges;
+      if (forward != backward) ++counts.unpaired_non_manifold_edges;
+    } else if (forward != backward) {
+      ++counts.inconsistent_edges;
     }
   }
   return counts;
@@ -349,6 +369,7 @@ TEST(AnalyzeTopology, EdgeCountsMatchTheDefinitionOnDamagedMeshes) {
     EXPECT_EQ(topology.boundary_edges, expected.boundary_edges);
     EXPECT_EQ(topology.inconsistent_edges, expected.inconsistent_edges);
     EXPECT_EQ(topology.non_manifold_edges, expected.non_manifold_edges);
+    EXPECT_EQ(topology.unpaired_non_manifold_edges, expected.unpaired_non_manifold_edges);
     if (damage == 0 && trial % 2 == 0) {
       EXPECT_TRUE(topology.closed());
     }

@@ -3,6 +3,8 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "engine/triangle_mesh.hpp"
 
@@ -16,6 +18,11 @@ struct ImportStats {
   bool distinct_positions = false;
   /// True when tumble's own binary STL reader read the file rather than assimp.
   bool own_stl_reader = false;
+  /// Faces of one or two corners (points, lines) found among triangles and skipped.
+  std::size_t skipped_faces = 0;
+  /// What the caller should pass on to the user (skipped faces): one sentence each, without
+  /// the file's name; `tumble inspect` appends them to the report's warnings.
+  std::vector<std::string> warnings;
 };
 
 /// Who reads binary STL files. tumble's own reader (the default) welds the corners straight

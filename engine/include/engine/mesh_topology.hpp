@@ -26,17 +26,21 @@ std::size_t remove_unreferenced_vertices(TriangleMesh& mesh);
 struct Topology {
   /// Edges used by exactly one triangle: the surface is open there.
   std::size_t boundary_edges = 0;
-  /// Edges used more often in one direction than in the other by two or more triangles
-  /// (two neighbours that disagree on the winding).
+  /// Edges used twice in the same direction (two neighbours that disagree on the winding).
   std::size_t inconsistent_edges = 0;
-  /// Balanced edges shared by more than two triangles (closed but not a 2-manifold).
+  /// Edges shared by three or more triangles (not a 2-manifold), whatever their directions.
   std::size_t non_manifold_edges = 0;
+  /// Those of the non-manifold edges used more often in one direction than in the other (an odd
+  /// count, or fins that do not pair up): the surface does not bound a volume there.
+  std::size_t unpaired_non_manifold_edges = 0;
   /// Connected parts (triangles joined through shared vertices).
   std::size_t parts = 0;
   /// Part of each triangle, numbered 0..parts-1 in order of each part's first triangle.
   std::vector<std::uint32_t> triangle_part;
 
-  bool closed() const { return boundary_edges == 0 && inconsistent_edges == 0; }
+  bool closed() const {
+    return boundary_edges == 0 && inconsistent_edges == 0 && unpaired_non_manifold_edges == 0;
+  }
 };
 
 /// Edge use and connected parts of a welded mesh without repeated-vertex triangles.
