@@ -306,7 +306,8 @@ int compare_scene(const CompareOptions& options, const InterruptGuard& guard, st
   // Integrators, layout, scene and options; then the output. All fail before any mesh is read.
   Comparison comparison = plan_comparison(options);
   std::unique_ptr<render::ImageSink> sink =
-      open_render_output(options, comparison.frame_settings, comparison.range.first);
+      open_render_output(options, comparison.frame_settings, comparison.range.first,
+                         scene_inputs(comparison.runs.front().plan.scene));
 
   // One renderer for every job; the scene is compiled (its meshes read) once, as the runs
   // differ only in their settings.

@@ -41,7 +41,7 @@ int render_scene(const RenderOptions& options, const InterruptGuard& guard, std:
   // Options and scene, then the output: both fail before any mesh is read.
   const RenderPlan plan = plan_render(options);
   std::unique_ptr<render::ImageSink> sink =
-      open_render_output(options, plan.settings, plan.frames.first);
+      open_render_output(options, plan.settings, plan.frames.first, scene_inputs(plan.scene));
 
   // Meshes, simulation, renderer.
   RenderJob job(plan);

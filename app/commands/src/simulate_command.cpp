@@ -201,15 +201,6 @@ std::vector<BodySummary> body_summaries(const engine::Simulation& simulation,
   return summaries;
 }
 
-/// The files a run reads: the scene and its meshes (never overwritten by its CSV).
-std::vector<std::filesystem::path> scene_inputs(const SceneDescription& scene) {
-  std::vector<std::filesystem::path> inputs = {scene.file};
-  for (const BodyDescription& body : scene.bodies) {
-    if (body.mesh) inputs.push_back(*body.mesh);
-  }
-  return inputs;
-}
-
 /// Runs the scene, filling `summary`; returns the exit status (kExitInterrupted, with nothing
 /// written, when `guard` caught a signal).
 int simulate(const SimulateOptions& options, const InterruptGuard& guard, RunSummary& summary,

@@ -58,6 +58,8 @@ engine::MeshReport inspect_file(const std::filesystem::path& file, const engine:
   engine::MeshReport report =
       engine::analyze_mesh(std::move(mesh), mass, file.string(), stats.distinct_positions);
   report.welded_vertices += stats.welded_vertices;
+  // What the import skipped (faces of one or two corners) is said with the checks.
+  report.warnings.insert(report.warnings.end(), stats.warnings.begin(), stats.warnings.end());
   return report;
 }
 

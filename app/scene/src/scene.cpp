@@ -312,4 +312,12 @@ double positive_option(double value, const char* option) {
   return value;
 }
 
+std::vector<std::filesystem::path> scene_inputs(const SceneDescription& scene) {
+  std::vector<std::filesystem::path> inputs = {scene.file};
+  for (const BodyDescription& body : scene.bodies) {
+    if (body.mesh) inputs.push_back(*body.mesh);
+  }
+  return inputs;
+}
+
 }  // namespace tumble::app

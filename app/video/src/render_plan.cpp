@@ -74,9 +74,9 @@ RenderSettings render_settings(const RenderOptions& options, const SceneDescript
 
 // H.264 and VP9 in yuv420p need even sides; that is checked here so the message says what to
 // change rather than quoting the encoder.
-std::unique_ptr<render::ImageSink> open_render_output(const VideoOptions& options,
-                                                      const RenderSettings& settings,
-                                                      std::size_t first_frame) {
+std::unique_ptr<render::ImageSink> open_render_output(
+    const VideoOptions& options, const RenderSettings& settings, std::size_t first_frame,
+    const std::vector<std::filesystem::path>& inputs) {
   const render::SinkKind kind = render::sink_kind(options.output);  // InputError if unknown
   if ((kind == render::SinkKind::kMp4 || kind == render::SinkKind::kWebm) &&
       (settings.width % 2 != 0 || settings.height % 2 != 0)) {
@@ -91,6 +91,7 @@ std::unique_ptr<render::ImageSink> open_render_output(const VideoOptions& option
   sink.height = settings.height;
   sink.fps = settings.fps;
   sink.first_index = first_frame;
+  sink.inputs = inputs;
   return render::open_image_sink(options.output, sink);
 }
 

@@ -157,6 +157,18 @@ TEST_F(RenderCommand, FrameRangeEqualsTheSameFramesOfAFullRender) {
   EXPECT_EQ(testing::probe_video(path("part.mp4")), "h264,160,96,3");
 }
 
+TEST_F(RenderCommand, AnOutputThatIsTheSceneThroughALinkIsRefusedAndTheSceneKept) {
+  const std::string scene = write_scene(tumbling_scene());
+  const std::string before = read_text(scene);
+  std::filesystem::create_symlink(scene, path("video.mp4"));
+  const auto result = render(scene + " -o " + path("video.mp4") + " --size 64x48 --fps 10");
+  EXPECT_EQ(result.status, 1) << result.err;
+  EXPECT_THAT(result.err, HasSubstr("tumble render: error: cannot write '" + path("video.mp4") +
+                                    "': it is the input '" + scene + "'"));
+  EXPECT_EQ(read_text(scene), before);
+  EXPECT_TRUE(std::filesystem::is_symlink(path("video.mp4")));
+}
+
 TEST_F(RenderCommand, OutputErrorsLeaveNothingBehind) {
   const std::string scene = write_scene(tumbling_scene());
   const std::string options = " --size 64x48 --fps 10";

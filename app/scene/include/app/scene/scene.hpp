@@ -89,6 +89,10 @@ struct SceneDescription {
 /// "stiffness", "damping" (default 0)}). Unknown keys are errors.
 SceneDescription parse_scene(const std::string& text, const std::filesystem::path& file);
 
+/// The files a run of `scene` reads: the scene file and its meshes. No output may be one of
+/// them (tumble/file_checks.hpp refuses it).
+std::vector<std::filesystem::path> scene_inputs(const SceneDescription& scene);
+
 /// The most steps a run may take (a bound on duration / dt; keeps step counts exact).
 inline constexpr double kMaxSteps = 1e12;
 

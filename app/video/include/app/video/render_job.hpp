@@ -13,6 +13,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "app/scene/render_settings.hpp"
 #include "app/scene/scene.hpp"
@@ -119,10 +120,11 @@ class RenderJob {
 };
 
 /// Opens the output of `options` (its name and --size) for frames of `settings`' size before
-/// anything is rendered; videos need even sides. Throws engine::InputError (unknown kind, odd
-/// sides) or std::runtime_error (filesystem, ffmpeg), naming the path.
-std::unique_ptr<render::ImageSink> open_render_output(const VideoOptions& options,
-                                                      const RenderSettings& settings,
-                                                      std::size_t first_frame);
+/// anything is rendered; videos need even sides, and the output may not be one of `inputs`
+/// (scene_inputs: the scene and its meshes). Throws tumble::InputError naming the path (unknown
+/// kind, odd sides, an input or a device as the output, filesystem, ffmpeg).
+std::unique_ptr<render::ImageSink> open_render_output(
+    const VideoOptions& options, const RenderSettings& settings, std::size_t first_frame,
+    const std::vector<std::filesystem::path>& inputs);
 
 }  // namespace tumble::app
