@@ -1,0 +1,13 @@
+// Fuzz target: the viewer's `--script` parser (app/viewer/src/viewer_script.cpp) on any text.
+#include "app/viewer/viewer_input.hpp"
+#include "fuzz_target.hpp"
+#include "tumble/errors.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  try {
+    tumble::app::viewer::parse_script(tumble::fuzz::as_text(data, size), "fuzz.script");
+  } catch (const tumble::InputError&) {
+    // A clean refusal.
+  }
+  return 0;
+}
