@@ -293,8 +293,7 @@ void print_summary(const CompareOptions& options, const Comparison& comparison, 
 /// Says that the signal `guard` caught stopped the command with nothing written.
 int report_interrupted(const CompareOptions& options, const InterruptGuard& guard,
                        std::ostream& err) {
-  err << "tumble compare: interrupted by " << guard.signal_name() << "; nothing written to '"
-      << options.output.string() << "'\n";
+  guard.report(err, "compare", options.output.string());
   return kExitInterrupted;
 }
 

@@ -28,8 +28,7 @@ namespace {
 
 int report_interrupted(const InterruptGuard& guard, const RenderOptions& options,
                        std::ostream& err) {
-  err << "tumble render: interrupted by " << guard.signal_name() << "; nothing written to '"
-      << options.output.string() << "'\n";
+  guard.report(err, "render", options.output.string());
   return kExitInterrupted;
 }
 
