@@ -215,11 +215,16 @@ TEST_F(SafeIo, ARunOfTooManyStepsOrTooLargeACsvNeedsAllowLong) {
                                  "2e+08 rows, 80 GB, more than 10 GB; give --every N or "
                                  "--allow-long"));
   EXPECT_EQ(directory_entries(dir_), std::vector<std::string>{"scene.json"});
-  // Allowed, it starts (and is stopped at once by a short timeout).
-  const auto allowed = run_command("timeout --preserve-status -s TERM 1 " + tumble_executable() +
-                                   " simulate " + scene + " --dt 1e-9 --allow-long");
+  // Allowed, it starts: its CSV temporary appears (waited for, not timed, so that a slow start
+  // on a loaded machine cannot kill it before its handlers are installed), then SIGTERM stops it.
+  const auto allowed =
+      interrupt(tumble_executable() + " simulate " + scene +
+                    " --dt 1e-9 --allow-long --every 1000000 --csv " + path("x.csv"),
+                "x\\.csv", "TERM");
   EXPECT_EQ(allowed.status, kExitInterrupted) << allowed.err;
-  EXPECT_EQ(allowed.err, "tumble simulate: interrupted by SIGTERM\n");
+  EXPECT_EQ(allowed.err, "tumble simulate: interrupted by SIGTERM; nothing written to '" +
+                             path("x.csv") + "'\n");
+  EXPECT_EQ(directory_entries(dir_), std::vector<std::string>{"scene.json"});
 }
 
 }  // namespace
