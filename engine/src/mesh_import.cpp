@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <fstream>
+#include <new>
 #include <optional>
 #include <span>
 #include <string>
@@ -24,6 +25,7 @@
 #include "binary_stl.hpp"
 #include "declared_counts.hpp"
 #include "engine/input_error.hpp"
+#include "isolated_import.hpp"
 #include "split_in_two.hpp"
 #include "vertex_welding.hpp"
 
@@ -310,6 +312,8 @@ TriangleMesh import_with_assimp(const std::filesystem::path& file,
   }
   if (scene == nullptr) {
     const std::string reason = single_line(importer.GetErrorString());
+    // assimp catches the allocation failure the memory limit causes: pass it on as such.
+    if (reason.find("bad_alloc") != std::string::npos) throw std::bad_alloc();
     if (reason.find("No suitable reader") != std::string::npos) {
       fail(file, "unknown or unsupported mesh format");
     }
@@ -334,7 +338,7 @@ TriangleMesh import_with_assimp(const std::filesystem::path& file,
 }  // namespace
 
 TriangleMesh import_mesh(const std::filesystem::path& file, ImportStats* stats,
-                         StlReader stl_reader) {
+                         StlReader stl_reader, const ImportLimits& limits) {
   const std::uintmax_t size = checked_size(file);
   ImportStats local;
   if (stats == nullptr) stats = &local;
@@ -353,7 +357,10 @@ TriangleMesh import_mesh(const std::filesystem::path& file, ImportStats* stats,
     // What the header declares is checked before assimp trusts it (declared_counts.hpp).
     detail::check_binary_stl_size(file, size);
     const std::optional<detail::DeclaredFaces> declared = detail::check_declared_counts(file, size);
-    mesh = import_with_assimp(file, declared, *stats);
+    // assimp reads in a child process under limits (isolated_import.hpp).
+    mesh = detail::run_isolated(
+        file, detail::effective_limits(limits, size), "assimp", *stats,
+        [&](ImportStats& child_stats) { return import_with_assimp(file, declared, child_stats); });
   }
   if (mesh.triangles.empty()) fail(file, "contains no triangles");
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {

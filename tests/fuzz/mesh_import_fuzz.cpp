@@ -15,7 +15,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const tumble::fuzz::TemporaryInputFile file(data + 1, size - 1, kExtensions[data[0] % 4]);
   try {
     tumble::engine::ImportStats stats;
-    auto mesh = tumble::engine::import_mesh(file.path(), &stats);
+    auto mesh = tumble::engine::import_mesh(file.path(), &stats, tumble::engine::StlReader::tumble,
+                                            tumble::engine::ImportLimits{5.0, 0});
     tumble::engine::analyze_mesh(std::move(mesh), tumble::engine::MassOptions{}, "fuzz",
                                  stats.distinct_positions);
   } catch (const tumble::InputError&) {

@@ -2,6 +2,7 @@
 /// @file Reading meshes with assimp (kept apart: the dynamics never include it).
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -31,6 +32,15 @@ struct ImportStats {
 /// included, are always assimp's.
 enum class StlReader { tumble, assimp };
 
+/// Bounds on assimp's reading of one file. assimp runs in a child process (a fork of tumble)
+/// under these limits, so that its own faults on malformed files (crashes, endless loops,
+/// runaway memory, leaks) end in a refusal naming the file instead of taking tumble down.
+/// Zero means the default, which grows with the file's size.
+struct ImportLimits {
+  double cpu_seconds = 0.0;        ///< default: 10 s + 2 s per whole MiB of file
+  std::uint64_t memory_bytes = 0;  ///< default: 2 GiB + 64 bytes per byte of file (at most RAM)
+};
+
 /// Reads every mesh of a file assimp understands (STL, OBJ, PLY, OFF, glTF 2.0, FBX, ...) into
 /// one triangle mesh, with each node's accumulated transform applied (a mirroring transform
 /// reverses the winding so normals stay outward). Vertices at identical positions within each
@@ -38,8 +48,8 @@ enum class StlReader { tumble, assimp };
 /// weld_by_position. Polygons are triangulated; points and lines are ignored. Binary STL goes
 /// to tumble's own reader unless `stl_reader` asks for assimp (the mesh is the same). Throws
 /// InputError naming the file when it cannot be read, has an unknown format, holds no
-/// triangles or has non-finite coordinates.
+/// triangles or has non-finite coordinates, and when assimp crashes on it or exceeds `limits`.
 TriangleMesh import_mesh(const std::filesystem::path& file, ImportStats* stats = nullptr,
-                         StlReader stl_reader = StlReader::tumble);
+                         StlReader stl_reader = StlReader::tumble, const ImportLimits& limits = {});
 
 }  // namespace tumble::engine

@@ -1,0 +1,308 @@
+// The import in a child process (isolated_import.hpp).
+//
+// The child is a fork of tumble, not a new program: it needs no executable to find and runs the
+// same code an in-process import would. It sets its own limits (RLIMIT_CPU, RLIMIT_AS, no core
+// file), dies with its parent (PR_SET_PDEATHSIG), and writes one message to a pipe:
+//   u8 tag (kMesh, kInputError, kOutOfMemory, kFailure), then for kMesh the ImportStats
+//   (three u64, two u8, the warnings as u64 count + length-prefixed strings), the positions
+//   (u64 count + raw doubles) and the triangles (u64 count + raw u32 triples); for the others
+//   one length-prefixed message.
+// It leaves by _exit, so nothing of the parent's (stdio buffers, atexit handlers, the leak
+// checker's exit-time scan) runs twice. The parent reads with a wall-clock deadline, a backstop
+// for a child that blocks without using CPU time, and then reaps the child.
+#include "isolated_import.hpp"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <sys/prctl.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <fstream>
+#include <new>
+#include <string>
+#include <system_error>
+
+#include "engine/input_error.hpp"
+
+#if defined(__SANITIZE_ADDRESS__)
+#define TUMBLE_ADDRESS_SANITIZER 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define TUMBLE_ADDRESS_SANITIZER 1
+#endif
+#endif
+
+namespace tumble::engine::detail {
+namespace {
+
+enum Tag : std::uint8_t { kMesh = 1, kInputError = 2, kOutOfMemory = 3, kFailure = 4 };
+
+constexpr std::uint64_t kMiB = std::uint64_t{1} << 20;
+constexpr std::uint64_t kGiB = std::uint64_t{1} << 30;
+
+/// Everything the child writes goes through here; a failed write (the parent gone) ends it.
+struct PipeWriter {
+  int fd;
+
+  void bytes(const void* data, std::size_t size) const {
+    const auto* p = static_cast<const char*>(data);
+    while (size > 0) {
+      const ssize_t n = ::write(fd, p, size);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) ::_exit(3);
+      p += n;
+      size -= static_cast<std::size_t>(n);
+    }
+  }
+  void u64(std::uint64_t value) const { bytes(&value, sizeof value); }
+  void u8(std::uint8_t value) const { bytes(&value, sizeof value); }
+  void text(const std::string& value) const {
+    u64(value.size());
+    bytes(value.data(), value.size());
+  }
+};
+
+/// The parent's side: exact reads against a deadline. Any shortfall (end of file, time out, a
+/// read error) sets `short_read` and makes every later read fail too.
+struct PipeReader {
+  int fd;
+  std::chrono::steady_clock::time_point deadline;
+  bool short_read = false;
+  bool timed_out = false;
+
+  bool bytes(void* data, std::size_t size) {
+    auto* p = static_cast<char*>(data);
+    while (size > 0 && !short_read) {
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+          deadline - std::chrono::steady_clock::now());
+      if (left.count() <= 0) {
+        timed_out = short_read = true;
+        break;
+      }
+      pollfd poll_fd{fd, POLLIN, 0};
+      const int ready =
+          ::poll(&poll_fd, 1, static_cast<int>(std::min<long long>(left.count(), 1LL << 30)));
+      if (ready < 0 && errno == EINTR) continue;  // a signal for the parent: keep reading
+      if (ready <= 0) continue;                   // the deadline is checked above
+      const ssize_t n = ::read(fd, p, size);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) {
+        short_read = true;
+        break;
+      }
+      p += n;
+      size -= static_cast<std::size_t>(n);
+    }
+    return !short_read;
+  }
+  std::uint64_t u64() {
+    std::uint64_t value = 0;
+    bytes(&value, sizeof value);
+    return value;
+  }
+  std::uint8_t u8() {
+    std::uint8_t value = 0;
+    bytes(&value, sizeof value);
+    return value;
+  }
+  std::string text() {
+    const std::uint64_t size = u64();
+    if (short_read || size > kGiB) return short_read = true, std::string();
+    std::string value(size, '\0');
+    bytes(value.data(), size);
+    return value;
+  }
+};
+
+void send_mesh(const PipeWriter& out, const TriangleMesh& mesh, const ImportStats& stats) {
+  out.u8(kMesh);
+  out.u64(stats.welded_vertices);
+  out.u64(stats.skipped_faces);
+  out.u8(stats.distinct_positions ? 1 : 0);
+  out.u8(stats.own_stl_reader ? 1 : 0);
+  out.u64(stats.warnings.size());
+  for (const std::string& warning : stats.warnings) out.text(warning);
+  out.u64(mesh.positions.size());
+  out.bytes(mesh.positions.data(), mesh.positions.size() * sizeof(mesh.positions[0]));
+  out.u64(mesh.triangles.size());
+  out.bytes(mesh.triangles.data(), mesh.triangles.size() * sizeof(mesh.triangles[0]));
+}
+
+/// The child's address space now, to which the memory budget is added.
+std::uint64_t current_address_space() {
+  std::ifstream statm("/proc/self/statm");
+  std::uint64_t pages = 0;
+  statm >> pages;
+  return pages * static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
+}
+
+void set_child_limits(const ImportLimits& limits) {
+  const rlimit no_core{0, 0};
+  ::setrlimit(RLIMIT_CORE, &no_core);
+  // The soft limit sends SIGXCPU, which ends the child; the hard one a second later, SIGKILL.
+  const auto seconds = static_cast<rlim_t>(std::ceil(limits.cpu_seconds));
+  const rlimit cpu{seconds, seconds + 1};
+  ::setrlimit(RLIMIT_CPU, &cpu);
+#ifndef TUMBLE_ADDRESS_SANITIZER
+  // (AddressSanitizer reserves terabytes of address space for its shadow: no limit there.)
+  const rlim_t bytes = current_address_space() + limits.memory_bytes;
+  const rlimit memory{bytes, bytes};
+  ::setrlimit(RLIMIT_AS, &memory);
+#endif
+}
+
+[[noreturn]] void child_main(int fd, const ImportLimits& limits,
+                             const std::function<TriangleMesh(ImportStats&)>& work) {
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  // Ctrl+C reaches the whole process group: the child then simply ends, and the parent,
+  // which saw the signal too, reports the interruption.
+  for (const int signal : {SIGINT, SIGTERM, SIGPIPE, SIGXCPU}) std::signal(signal, SIG_DFL);
+  set_child_limits(limits);
+  const PipeWriter out{fd};
+  try {
+    ImportStats stats;
+    const TriangleMesh mesh = work(stats);
+    send_mesh(out, mesh, stats);
+  } catch (const InputError& error) {
+    out.u8(kInputError);
+    out.text(error.what());
+  } catch (const std::bad_alloc&) {
+    out.u8(kOutOfMemory);
+    out.text("");
+  } catch (const std::exception& error) {
+    out.u8(kFailure);
+    out.text(error.what());
+  } catch (...) {
+    out.u8(kFailure);
+    out.text("an unknown exception");
+  }
+  ::_exit(0);
+}
+
+std::string format_seconds(double seconds) {
+  std::array<char, 32> text{};
+  std::snprintf(text.data(), text.size(), "%g s", seconds);
+  return text.data();
+}
+
+std::string format_bytes(std::uint64_t bytes) {
+  std::array<char, 32> text{};
+  std::snprintf(text.data(), text.size(), "%.3g GiB", static_cast<double>(bytes) / kGiB);
+  return text.data();
+}
+
+/// Why a child that sent no complete answer ended, as the end of a sentence.
+std::string describe_end(int status, bool timed_out, const ImportLimits& limits, const char* what) {
+  const std::string reader = what;
+  if (timed_out) return reader + " did not finish reading it in time (it may loop on this file)";
+  if (WIFSIGNALED(status)) {
+    const int signal = WTERMSIG(status);
+    if (signal == SIGXCPU || signal == SIGKILL) {
+      return reader + " used more than " + format_seconds(limits.cpu_seconds) +
+             " of CPU time reading it (it may loop on this file)";
+    }
+    const char* abbreviation = sigabbrev_np(signal);
+    const std::string signal_name = abbreviation != nullptr ? std::string("SIG") + abbreviation
+                                                            : "signal " + std::to_string(signal);
+    if (signal == SIGINT || signal == SIGTERM)
+      return "reading it was interrupted (" + signal_name + ")";
+    const char* description = sigdescr_np(signal);
+    return reader + " crashed reading it (" + signal_name + ", " +
+           (description != nullptr ? description : "unknown signal") +
+           "): the file is malformed in a way " + reader + " does not survive";
+  }
+  return reader + " ended without an answer (exit status " +
+         std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")";
+}
+
+/// The parent's side of run_isolated once the child runs: read its answer, reap it, judge.
+TriangleMesh receive(const std::filesystem::path& file, const ImportLimits& limits,
+                     const char* what, ImportStats& stats, int fd, pid_t child) {
+  const auto wall = std::chrono::duration<double>(2.0 * limits.cpu_seconds + 10.0);
+  PipeReader in{fd, std::chrono::steady_clock::now() +
+                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(wall)};
+  TriangleMesh mesh;
+  std::string message;
+  const std::uint8_t tag = in.u8();
+  if (tag == kMesh) {
+    stats.welded_vertices = in.u64();
+    stats.skipped_faces = in.u64();
+    stats.distinct_positions = in.u8() != 0;
+    stats.own_stl_reader = in.u8() != 0;
+    const std::uint64_t warnings = in.u64();
+    for (std::uint64_t i = 0; i < warnings && !in.short_read; ++i) {
+      stats.warnings.push_back(in.text());
+    }
+    mesh.positions.resize(in.short_read ? 0 : in.u64());
+    in.bytes(mesh.positions.data(), mesh.positions.size() * sizeof(mesh.positions[0]));
+    mesh.triangles.resize(in.short_read ? 0 : in.u64());
+    in.bytes(mesh.triangles.data(), mesh.triangles.size() * sizeof(mesh.triangles[0]));
+  } else if (!in.short_read) {
+    message = in.text();
+  }
+  if (in.timed_out) ::kill(child, SIGKILL);
+  int status = 0;
+  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  }
+  ::close(fd);
+
+  const std::string name = file.string();
+  if (in.short_read)
+    throw InputError(name + ": " + describe_end(status, in.timed_out, limits, what));
+  if (tag == kMesh) return mesh;
+  if (tag == kInputError) throw InputError(message);
+  if (tag == kOutOfMemory) {
+    throw InputError(name + ": " + what + " needs more than " + format_bytes(limits.memory_bytes) +
+                     " of memory to read it");
+  }
+  throw InputError(name + ": " + what + " failed reading it (" + message + ")");
+}
+
+}  // namespace
+
+ImportLimits effective_limits(const ImportLimits& requested, std::uintmax_t size) {
+  ImportLimits limits = requested;
+  const double mib = static_cast<double>(size) / static_cast<double>(kMiB);
+  if (!(limits.cpu_seconds > 0.0)) limits.cpu_seconds = 10.0 + 2.0 * std::floor(mib);
+  if (limits.memory_bytes == 0) {
+    const auto physical = static_cast<std::uint64_t>(::sysconf(_SC_PHYS_PAGES)) *
+                          static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
+    limits.memory_bytes = std::min<std::uint64_t>(2 * kGiB + 64 * std::uint64_t{size},
+                                                  std::max<std::uint64_t>(physical, kGiB));
+  }
+  return limits;
+}
+
+TriangleMesh run_isolated(const std::filesystem::path& file, const ImportLimits& limits,
+                          const char* what, ImportStats& stats,
+                          const std::function<TriangleMesh(ImportStats&)>& work) {
+  std::array<int, 2> fds{};
+  if (::pipe2(fds.data(), O_CLOEXEC) != 0) {
+    throw std::system_error(errno, std::generic_category(),
+                            "cannot start reading " + file.string() + " (pipe)");
+  }
+  const pid_t child = ::fork();
+  if (child < 0) {
+    const int error = errno;
+    ::close(fds[0]);
+    ::close(fds[1]);
+    throw std::system_error(error, std::generic_category(),
+                            "cannot start reading " + file.string() + " (fork)");
+  }
+  if (child == 0) {
+    ::close(fds[0]);
+    child_main(fds[1], limits, work);
+  }
+  ::close(fds[1]);
+  return receive(file, limits, what, stats, fds[0], child);
+}
+
+}  // namespace tumble::engine::detail
