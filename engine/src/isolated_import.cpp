@@ -2,18 +2,23 @@
 //
 // The child is a fork of tumble, not a new program: it needs no executable to find and runs the
 // same code an in-process import would. It sets its own limits (RLIMIT_CPU, RLIMIT_AS, no core
-// file), dies with its parent (PR_SET_PDEATHSIG), and writes one message to a pipe:
+// file), dies with its parent (PR_SET_PDEATHSIG), and writes one message into an anonymous
+// memory file (memfd) the parent made before the fork:
 //   u8 tag (kMesh, kInputError, kOutOfMemory, kFailure), then for kMesh the ImportStats
 //   (three u64, two u8, the warnings as u64 count + length-prefixed strings), the positions
 //   (u64 count + raw doubles) and the triangles (u64 count + raw u32 triples); for the others
 //   one length-prefixed message.
 // It leaves by _exit, so nothing of the parent's (stdio buffers, atexit handlers, the leak
-// checker's exit-time scan) runs twice. The parent reads with a wall-clock deadline, a backstop
-// for a child that blocks without using CPU time, and then reaps the child.
+// checker's exit-time scan) runs twice. The parent waits for the end of a pipe the child holds
+// open (it closes when the child ends, however it ends), with a wall-clock deadline as a
+// backstop for a child that blocks without using CPU time; then it reaps the child and reads
+// the message. Through a memory file, a large mesh costs two memory copies; through the pipe
+// itself it cost a context switch per 64 KiB as well.
 #include "isolated_import.hpp"
 
 #include <fcntl.h>
 #include <poll.h>
+#include <sys/mman.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -48,7 +53,7 @@ enum Tag : std::uint8_t { kMesh = 1, kInputError = 2, kOutOfMemory = 3, kFailure
 constexpr std::uint64_t kMiB = std::uint64_t{1} << 20;
 constexpr std::uint64_t kGiB = std::uint64_t{1} << 30;
 
-/// Everything the child writes goes through here; a failed write (the parent gone) ends it.
+/// Everything the child writes goes through here; a failed write (no memory left) ends it.
 struct PipeWriter {
   int fd;
 
@@ -70,28 +75,15 @@ struct PipeWriter {
   }
 };
 
-/// The parent's side: exact reads against a deadline. Any shortfall (end of file, time out, a
-/// read error) sets `short_read` and makes every later read fail too.
-struct PipeReader {
+/// The parent's side: exact reads of the finished message. Any shortfall (the child ended
+/// part-way) sets `short_read` and makes every later read fail too.
+struct MessageReader {
   int fd;
-  std::chrono::steady_clock::time_point deadline;
   bool short_read = false;
-  bool timed_out = false;
 
   bool bytes(void* data, std::size_t size) {
     auto* p = static_cast<char*>(data);
     while (size > 0 && !short_read) {
-      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-          deadline - std::chrono::steady_clock::now());
-      if (left.count() <= 0) {
-        timed_out = short_read = true;
-        break;
-      }
-      pollfd poll_fd{fd, POLLIN, 0};
-      const int ready =
-          ::poll(&poll_fd, 1, static_cast<int>(std::min<long long>(left.count(), 1LL << 30)));
-      if (ready < 0 && errno == EINTR) continue;  // a signal for the parent: keep reading
-      if (ready <= 0) continue;                   // the deadline is checked above
       const ssize_t n = ::read(fd, p, size);
       if (n < 0 && errno == EINTR) continue;
       if (n <= 0) {
@@ -223,14 +215,42 @@ std::string describe_end(int status, bool timed_out, const ImportLimits& limits,
          std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")";
 }
 
-/// The parent's side of run_isolated once the child runs: read its answer, reap it, judge.
+/// Waits until the child's end of `pipe` closes (it has ended) or `seconds` pass; false when
+/// they passed. Signals for the parent do not cut the wait short.
+bool wait_for_end(int pipe, double seconds) {
+  const auto deadline = std::chrono::steady_clock::now() +
+                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                            std::chrono::duration<double>(seconds));
+  while (true) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+        deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) return false;
+    pollfd poll_fd{pipe, POLLIN, 0};
+    const int ready =
+        ::poll(&poll_fd, 1, static_cast<int>(std::min<long long>(left.count(), 1LL << 30)));
+    if (ready < 0 && errno != EINTR) return true;  // cannot wait: reap (blocking) instead
+    if (ready <= 0) continue;
+    char byte = 0;
+    const ssize_t n = ::read(pipe, &byte, 1);
+    if (n == 0 || (n < 0 && errno != EINTR && errno != EAGAIN)) return true;
+  }
+}
+
+/// The parent's side of run_isolated once the child runs: wait for it, reap it, read its
+/// answer from `message`, judge.
 TriangleMesh receive(const std::filesystem::path& file, const ImportLimits& limits,
-                     const char* what, ImportStats& stats, int fd, pid_t child) {
-  const auto wall = std::chrono::duration<double>(2.0 * limits.cpu_seconds + 10.0);
-  PipeReader in{fd, std::chrono::steady_clock::now() +
-                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(wall)};
+                     const char* what, ImportStats& stats, int pipe, int message, pid_t child) {
+  const bool timed_out = !wait_for_end(pipe, 2.0 * limits.cpu_seconds + 10.0);
+  if (timed_out) ::kill(child, SIGKILL);
+  int status = 0;
+  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  }
+  ::close(pipe);
+  ::lseek(message, 0, SEEK_SET);
+  MessageReader in{message};
+  in.short_read = timed_out;
   TriangleMesh mesh;
-  std::string message;
+  std::string text;
   const std::uint8_t tag = in.u8();
   if (tag == kMesh) {
     stats.welded_vertices = in.u64();
@@ -246,24 +266,19 @@ TriangleMesh receive(const std::filesystem::path& file, const ImportLimits& limi
     mesh.triangles.resize(in.short_read ? 0 : in.u64());
     in.bytes(mesh.triangles.data(), mesh.triangles.size() * sizeof(mesh.triangles[0]));
   } else if (!in.short_read) {
-    message = in.text();
+    text = in.text();
   }
-  if (in.timed_out) ::kill(child, SIGKILL);
-  int status = 0;
-  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
-  }
-  ::close(fd);
+  ::close(message);
 
   const std::string name = file.string();
-  if (in.short_read)
-    throw InputError(name + ": " + describe_end(status, in.timed_out, limits, what));
+  if (in.short_read) throw InputError(name + ": " + describe_end(status, timed_out, limits, what));
   if (tag == kMesh) return mesh;
-  if (tag == kInputError) throw InputError(message);
+  if (tag == kInputError) throw InputError(text);
   if (tag == kOutOfMemory) {
     throw InputError(name + ": " + what + " needs more than " + format_bytes(limits.memory_bytes) +
                      " of memory to read it");
   }
-  throw InputError(name + ": " + what + " failed reading it (" + message + ")");
+  throw InputError(name + ": " + what + " failed reading it (" + text + ")");
 }
 
 }  // namespace
@@ -284,25 +299,30 @@ ImportLimits effective_limits(const ImportLimits& requested, std::uintmax_t size
 TriangleMesh run_isolated(const std::filesystem::path& file, const ImportLimits& limits,
                           const char* what, ImportStats& stats,
                           const std::function<TriangleMesh(ImportStats&)>& work) {
-  std::array<int, 2> fds{};
-  if (::pipe2(fds.data(), O_CLOEXEC) != 0) {
-    throw std::system_error(errno, std::generic_category(),
-                            "cannot start reading " + file.string() + " (pipe)");
+  const auto cannot_start = [&](const char* call) {
+    return std::system_error(errno, std::generic_category(),
+                             "cannot start reading " + file.string() + " (" + call + ")");
+  };
+  const int message = ::memfd_create("tumble-import", MFD_CLOEXEC);
+  if (message < 0) throw cannot_start("memfd_create");
+  std::array<int, 2> pipe{};
+  if (::pipe2(pipe.data(), O_CLOEXEC) != 0) {
+    const auto error = cannot_start("pipe");
+    ::close(message);
+    throw error;
   }
   const pid_t child = ::fork();
   if (child < 0) {
-    const int error = errno;
-    ::close(fds[0]);
-    ::close(fds[1]);
-    throw std::system_error(error, std::generic_category(),
-                            "cannot start reading " + file.string() + " (fork)");
+    const auto error = cannot_start("fork");
+    for (const int fd : {message, pipe[0], pipe[1]}) ::close(fd);
+    throw error;
   }
   if (child == 0) {
-    ::close(fds[0]);
-    child_main(fds[1], limits, work);
+    ::close(pipe[0]);  // pipe[1] stays open until the child ends: its closing is the signal
+    child_main(message, limits, work);
   }
-  ::close(fds[1]);
-  return receive(file, limits, what, stats, fds[0], child);
+  ::close(pipe[1]);
+  return receive(file, limits, what, stats, pipe[0], message, child);
 }
 
 }  // namespace tumble::engine::detail

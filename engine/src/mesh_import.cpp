@@ -7,6 +7,7 @@
 // small meshes). Node transforms are applied by walking the node tree in double precision.
 #include "engine/mesh_import.hpp"
 
+#include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
@@ -20,6 +21,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <system_error>
 
 #include "binary_stl.hpp"
@@ -292,6 +294,22 @@ void require_all_faces(const std::filesystem::path& file,
                  "would be those of part of the file");
 }
 
+/// True when every mesh of the scene is the placeholder assimp builds for a skeleton (the bones
+/// of a motion capture, CSM and BVH): it shows the joints, and encloses nothing of a body.
+bool only_skeleton_placeholders(const aiScene& scene) {
+  if (scene.mNumAnimations == 0 || scene.mMaterials == nullptr) return false;
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    const unsigned material = scene.mMeshes[m]->mMaterialIndex;
+    if (material >= scene.mNumMaterials || scene.mMaterials[material] == nullptr) return false;
+    aiString name;
+    if (scene.mMaterials[material]->Get(AI_MATKEY_NAME, name) != AI_SUCCESS ||
+        std::string_view(name.C_Str()) != "SkeletonMaterial") {
+      return false;
+    }
+  }
+  return true;
+}
+
 /// Reads the file with assimp (every format it knows) and collects its meshes.
 TriangleMesh import_with_assimp(const std::filesystem::path& file,
                                 const std::optional<detail::DeclaredFaces>& declared,
@@ -299,6 +317,11 @@ TriangleMesh import_with_assimp(const std::filesystem::path& file,
   Assimp::Importer importer;
   const aiScene* scene = importer.ReadFile(file.string(), 0);
   if (scene != nullptr) require_all_faces(file, declared, validate_scene(*scene, file));
+  if (scene != nullptr && only_skeleton_placeholders(*scene)) {
+    fail(file,
+         "holds no solid, only an animated skeleton (motion capture): the mesh assimp "
+         "makes to show its bones is a placeholder, not a body");
+  }
   // Triangulate only when the file has polygons (STL never does).
   const auto has_non_triangles = [](const aiScene& s) {
     for (unsigned m = 0; m < s.mNumMeshes; ++m) {

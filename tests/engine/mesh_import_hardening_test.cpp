@@ -273,5 +273,23 @@ TEST(MeshImportDroppedFaces, CompleteFilesPassTheCrossCheck) {
   }
 }
 
+// --- files that hold no solid
+
+TEST(MeshImportPlaceholders, AMotionCaptureSkeletonIsRefusedNotMeasured) {
+  // assimp draws the bones of a BVH or CSM skeleton as a placeholder mesh; CSM's placeholder
+  // was measured as a body (assimp-testmodels' CSM/ThomasFechten.csm, "volume" 7.8e8).
+  TempDir dir;
+  const auto file = dir / "walk.bvh";
+  fixtures::write_file(file,
+                       "HIERARCHY\nROOT Hips\n{\n  OFFSET 0 0 0\n  CHANNELS 3 Xposition Yposition "
+                       "Zposition\n  JOINT Chest\n  {\n    OFFSET 0 5 0\n    CHANNELS 3 Zrotation "
+                       "Xrotation Yrotation\n    End Site\n    {\n      OFFSET 0 5 0\n    }\n  }\n"
+                       "}\nMOTION\nFrames: 2\nFrame Time: 0.04\n0 0 0 0 0 0\n0 1 0 0 10 0\n");
+  EXPECT_EQ(input_error_of([&] { import_mesh(file); }),
+            file.string() +
+                ": holds no solid, only an animated skeleton (motion capture): the mesh assimp "
+                "makes to show its bones is a placeholder, not a body");
+}
+
 }  // namespace
 }  // namespace tumble::engine
