@@ -151,9 +151,10 @@ void set_child_limits(const ImportLimits& limits) {
 #endif
 }
 
-[[noreturn]] void child_main(int fd, const ImportLimits& limits,
+[[noreturn]] void child_main(int fd, pid_t parent, const ImportLimits& limits,
                              const std::function<TriangleMesh(ImportStats&)>& work) {
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (::getppid() != parent) ::_exit(4);  // the parent died before the line above
   // Ctrl+C reaches the whole process group: the child then simply ends, and the parent,
   // which saw the signal too, reports the interruption.
   for (const int signal : {SIGINT, SIGTERM, SIGPIPE, SIGXCPU}) std::signal(signal, SIG_DFL);
@@ -311,6 +312,7 @@ TriangleMesh run_isolated(const std::filesystem::path& file, const ImportLimits&
     ::close(message);
     throw error;
   }
+  const pid_t parent = ::getpid();
   const pid_t child = ::fork();
   if (child < 0) {
     const auto error = cannot_start("fork");
@@ -319,7 +321,7 @@ TriangleMesh run_isolated(const std::filesystem::path& file, const ImportLimits&
   }
   if (child == 0) {
     ::close(pipe[0]);  // pipe[1] stays open until the child ends: its closing is the signal
-    child_main(message, limits, work);
+    child_main(message, parent, limits, work);
   }
   ::close(pipe[1]);
   return receive(file, limits, what, stats, pipe[0], message, child);
