@@ -157,7 +157,12 @@ void set_child_limits(const ImportLimits& limits) {
   if (::getppid() != parent) ::_exit(4);  // the parent died before the line above
   // Ctrl+C reaches the whole process group: the child then simply ends, and the parent,
   // which saw the signal too, reports the interruption.
-  for (const int signal : {SIGINT, SIGTERM, SIGPIPE, SIGXCPU}) std::signal(signal, SIG_DFL);
+  // A crash ends the child by its signal, which the parent names. Handlers inherited from the
+  // parent (a sanitizer's, a fuzzer's) would report a fault of assimp's as tumble's own, at
+  // length, and save crash inputs from inside the child.
+  for (const int signal : {SIGINT, SIGTERM, SIGPIPE, SIGXCPU, SIGSEGV, SIGBUS, SIGFPE, SIGILL}) {
+    std::signal(signal, SIG_DFL);
+  }
   set_child_limits(limits);
   const PipeWriter out{fd};
   try {
