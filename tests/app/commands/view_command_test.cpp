@@ -184,6 +184,27 @@ TEST_F(ViewCommand, CtrlPWritesAScreenshotAndCtrlRRecordsAVideo) {
   EXPECT_NEAR(frames, 61, 6);
 }
 
+TEST_F(ViewCommand, AnInterruptDiscardsTheRecordingAndExitsWith130) {
+  // Ctrl+R records to t_handle_flip-1.mp4 through `.t_handle_flip-1.mp4.tmp-PID`; once that
+  // temporary is there (waited for, not timed: the viewer may start slowly under load), the
+  // signal goes to PID, the viewer itself. The script's quit only ends a run that missed it.
+  std::ofstream(dir_ / "script.txt") << "0.2 key ctrl+r\n60 quit\n";
+  for (const std::string signal : {"INT", "TERM"}) {
+    const auto result = run_command(
+        "cd '" + dir_.string() + "' && (env --default-signal=INT xvfb-run -a -s '-screen 0 " +
+        "1280x800x24' '" + tumble_executable() + "' view '" + demo() +
+        "' --script script.txt --output-dir . </dev/null & pid=$!; tmp=; for i in $(seq 1500); "
+        "do tmp=$(ls -a | grep '^\\.t_handle_flip-1\\.mp4\\.tmp-' | head -n 1); [ -n \"$tmp\" ] "
+        "&& break; sleep 0.02; done; sleep 0.3; kill -" +
+        signal + " \"${tmp##*-}\"; wait $pid)");
+    EXPECT_EQ(result.status, 130) << result.err;
+    EXPECT_THAT(result.err, HasSubstr("tumble view: interrupted by SIG" + signal +
+                                      "; recording discarded, nothing written to "
+                                      "'./t_handle_flip-1.mp4'\n"));
+    EXPECT_EQ(tumble::testing::directory_entries(dir_), std::vector<std::string>{"script.txt"});
+  }
+}
+
 TEST_F(ViewCommand, ABadDroppedFileShowsAnErrorAndTheViewerKeepsRunning) {
   std::ofstream(dir_ / "broken.obj") << "v 0 0 0\nv 1 0 0\nf 1 2 3\n";
   const auto result = view(
