@@ -179,10 +179,12 @@ TEST_F(SafeIo, InterruptedBenchLeavesNothingAndExitsWith130) {
 TEST_F(SafeIo, BenchStopsWithinALongCase) {
   // The second case, rk4 at dt 1e-5 over 2000 s (2e8 steps, a minute or more per run), is
   // running when SIGTERM comes: the run must stop there, not at the end of the case. `timeout`
-  // turns a run that does not stop into status 137 (SIGKILL) long before the case ends.
+  // turns a run that does not stop into status 137 (SIGKILL) long before the case ends;
+  // --foreground, or it would pass the signal on twice (to the child and to its group), and
+  // the second would stop tumble at once.
   const std::string scene = write_scene(spinning_scene(2000.0, 0.5));
   const auto result =
-      interrupt("timeout -s KILL 60 " + tumble_executable() + " bench " + scene +
+      interrupt("timeout --foreground -s KILL 60 " + tumble_executable() + " bench " + scene +
                     " --integrators rk4 --dts 0.5,1e-5 --repeat 1 -o " + path("out"),
                 "out", "TERM");
   EXPECT_EQ(result.status, kExitInterrupted) << result.err;
