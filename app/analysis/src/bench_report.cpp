@@ -3,13 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <sstream>
 #include <stdexcept>
 
 #include "app/analysis/gnuplot.hpp"
-#include "tumble/errors.hpp"
+#include "app/support/file_write.hpp"
 
 namespace tumble::app {
 namespace {
@@ -44,10 +43,6 @@ std::vector<std::string> integrators_of(const BenchOutcome& outcome, std::size_t
 /// "dt 0.01" or "tol 1e-08".
 std::string step_text(const BenchCase& c) {
   return c.tolerance ? "tol " + number(*c.tolerance, "%.3g") : "dt " + number(c.dt, "%.4g");
-}
-
-void ensure_written(std::ofstream& out, const std::filesystem::path& file) {
-  if (!out.flush()) throw InputError("cannot write " + file.string());
 }
 
 }  // namespace
@@ -85,7 +80,7 @@ const std::vector<std::string>& results_columns() {
 }
 
 void write_results_csv(const BenchOutcome& outcome, const std::filesystem::path& file) {
-  std::ofstream out(file);
+  std::ostringstream out;
   for (std::size_t i = 0; i < results_columns().size(); ++i) {
     out << (i ? "," : "") << results_columns()[i];
   }
@@ -114,7 +109,7 @@ void write_results_csv(const BenchOutcome& outcome, const std::filesystem::path&
     }
     out << "\n";
   }
-  ensure_written(out, file);
+  write_text_file(file, out.str());
 }
 
 const std::vector<ErrorMeasure>& plotted_measures() {
@@ -337,7 +332,7 @@ void scene_section(std::ostream& out, const BenchOutcome& outcome, std::size_t s
 }  // namespace
 
 void write_report(const BenchOutcome& outcome, const std::filesystem::path& file) {
-  std::ofstream out(file);
+  std::ostringstream out;
   out << "# tumble bench\n\n"
       << "Error against run time. Each case: one measured run (errors sampled on the scene's "
          "grid), used as the warm-up, then "
@@ -361,7 +356,7 @@ void write_report(const BenchOutcome& outcome, const std::filesystem::path& file
   }
   out << " (times in s, errors in rad or relative, empty when the run blew up).\n\n";
   for (std::size_t s = 0; s < outcome.scenes.size(); ++s) scene_section(out, outcome, s);
-  ensure_written(out, file);
+  write_text_file(file, out.str());
 }
 
 }  // namespace tumble::app

@@ -14,6 +14,15 @@
 namespace tumble::app {
 namespace {
 
+/// Steps between two looks at `stop` inside a fixed-step run: rare enough to leave the timings
+/// alone (one call per 1024 steps of 50 ns or more), often enough to stop within milliseconds.
+/// An adaptive run looks after each of its output steps (about ten, each of many steps).
+constexpr std::size_t kStopCheckSteps = 1024;
+
+std::size_t stop_check_steps(const BenchCase& c) {
+  return c.adaptive ? 1 : kStopCheckSteps;
+}
+
 engine::Simulation make_simulation(const BenchScene& scene, const BenchCase& c) {
   engine::SimulationSettings settings = scene.settings;
   settings.integrator = c.kind;
@@ -30,10 +39,29 @@ bool pin_to_core(int core) {
   return pthread_setaffinity_np(pthread_self(), sizeof set, &set) == 0;
 }
 
+/// Steps `simulation` to its end (or its blow-up), asking `stop` every `every` steps. Returns
+/// false when `stop` said so.
+bool run_to_end(engine::Simulation& simulation, std::size_t every,
+                const std::function<bool()>& stop) {
+  if (!stop) {
+    while (simulation.step()) {
+    }
+    return true;
+  }
+  for (;;) {
+    for (std::size_t k = 0; k < every; ++k) {
+      if (!simulation.step()) return true;
+    }
+    if (stop()) return false;
+  }
+}
+
 }  // namespace
 
-CaseResult run_case(const BenchScene& scene, const BenchCase& c, int repeat) {
+std::optional<CaseResult> run_case(const BenchScene& scene, const BenchCase& c, int repeat,
+                                   const std::function<bool()>& stop) {
   CaseResult result;
+  const std::size_t every = stop_check_steps(c);
 
   // The measured run: errors at every grid sample (every `ratio`-th step and the last).
   {
@@ -48,6 +76,7 @@ CaseResult run_case(const BenchScene& scene, const BenchCase& c, int repeat) {
     ErrorMeter meter(scene.bodies, scene.initial, scene.reference);
     const std::size_t samples = scene.grid.count();
     while (simulation.step()) {
+      if (stop && simulation.steps() % every == 0 && stop()) return std::nullopt;
       const std::size_t k = simulation.steps() * stride / ratio;
       if (simulation.finished()) {
         meter.observe(samples, simulation.states());
@@ -68,10 +97,9 @@ CaseResult run_case(const BenchScene& scene, const BenchCase& c, int repeat) {
   for (int run = 0; run < repeat; ++run) {
     engine::Simulation simulation = make_simulation(scene, c);
     const auto start = std::chrono::steady_clock::now();
-    while (simulation.step()) {
-    }
-    const auto stop = std::chrono::steady_clock::now();
-    result.seconds.push_back(std::chrono::duration<double>(stop - start).count());
+    if (!run_to_end(simulation, every, stop)) return std::nullopt;
+    const auto end = std::chrono::steady_clock::now();
+    result.seconds.push_back(std::chrono::duration<double>(end - start).count());
   }
   std::vector<double> sorted = result.seconds;
   std::sort(sorted.begin(), sorted.end());
@@ -115,18 +143,22 @@ std::vector<CaseResult> run_cases(
         next = cases.size();
         return;
       }
-      CaseResult result;
+      std::optional<CaseResult> result;
       try {
-        result = run_case(scenes[cases[i].scene], cases[i], repeat);
+        result = run_case(scenes[cases[i].scene], cases[i], repeat, stop);
       } catch (...) {  // e.g. an integrator refusing a body: stop everyone, rethrow after join
         const std::lock_guard lock(report);
         if (!failure) failure = std::current_exception();
         next = cases.size();
         return;
       }
-      result.core = pinned ? core : -1;
+      if (!result) {  // stopped within the case
+        next = cases.size();
+        return;
+      }
+      result->core = pinned ? core : -1;
       const std::lock_guard lock(report);
-      results[i] = std::move(result);
+      results[i] = std::move(*result);
       ++finished;
       if (done) done(i, results[i], finished);
     }

@@ -1,11 +1,13 @@
 #include "app/analysis/gnuplot.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 
+#include "app/support/file_write.hpp"
 #include "tumble/errors.hpp"
 
 namespace tumble::app {
@@ -53,7 +55,47 @@ void plot_commands(std::ostream& script, const LogLogPlot& plot, std::size_t ind
   script << "\n";
 }
 
+/// The last `count` bytes of `file` (fewer when it is shorter); empty when it cannot be read.
+std::string file_tail(const std::filesystem::path& file, std::size_t count) {
+  std::ifstream in(file, std::ios::binary | std::ios::ate);
+  if (!in) return {};
+  const std::streamoff size = in.tellg();
+  const std::streamoff start =
+      std::max<std::streamoff>(0, size - static_cast<std::streamoff>(count));
+  in.seekg(start);
+  std::string tail(static_cast<std::size_t>(size - start), '\0');
+  in.read(tail.data(), static_cast<std::streamsize>(tail.size()));
+  return in ? tail : std::string();
+}
+
+/// Whether `file` is whole: a PNG ends with its IEND chunk, an SVG with its closing tag. gnuplot
+/// neither complains nor fails when a write of its output fails (a full disk): it exits 0 and
+/// leaves the file cut short.
+bool complete_picture(const std::filesystem::path& file) {
+  if (file.extension() == ".png") {
+    static const std::string kIend("\0\0\0\0IEND\xae\x42\x60\x82", 12);
+    return file_tail(file, kIend.size()) == kIend;
+  }
+  std::string tail = file_tail(file, 64);
+  while (!tail.empty() && (tail.back() == '\n' || tail.back() == ' ')) tail.pop_back();
+  return tail.ends_with("</svg>");
+}
+
 }  // namespace
+
+void check_pictures(const std::vector<std::filesystem::path>& pictures) {
+  for (const std::filesystem::path& picture : pictures) {
+    std::error_code error;
+    if (!std::filesystem::exists(picture, error)) {
+      throw WriteError(picture, "gnuplot wrote no picture (is the disk full?)");
+    }
+    if (!complete_picture(picture)) {
+      const auto size = std::filesystem::file_size(picture, error);
+      throw WriteError(picture, "gnuplot stopped after " + std::to_string(error ? 0 : size) +
+                                    " bytes, the picture is incomplete (is the disk full?)");
+    }
+  }
+}
 
 bool gnuplot_available() {
   return std::system("gnuplot --version >/dev/null 2>&1") == 0;
@@ -99,13 +141,10 @@ std::string gnuplot_quoted(const std::string& text) {
   return out + "'";
 }
 
-void run_gnuplot(const std::string& script, const std::filesystem::path& script_file) {
+void run_gnuplot(const std::string& script, const std::filesystem::path& script_file,
+                 const std::vector<std::filesystem::path>& pictures) {
   const std::filesystem::path log = script_file.string() + ".log";
-  {
-    std::ofstream out(script_file);
-    out << script;
-    if (!out.flush()) throw InputError("cannot write " + script_file.string());
-  }
+  write_text_file(script_file, script);
   const std::string command =
       "gnuplot " + shell_quoted(script_file.string()) + " >" + shell_quoted(log.string()) + " 2>&1";
   const int status = std::system(command.c_str());
@@ -122,10 +161,16 @@ void run_gnuplot(const std::string& script, const std::filesystem::path& script_
                                                                   "; is gnuplot installed?)"
                                                             : ": " + first_line));
   }
+  check_pictures(pictures);
 }
 
 void draw_plots(const std::vector<LogLogPlot>& plots, const std::filesystem::path& script_file) {
-  run_gnuplot(gnuplot_script(plots), script_file);
+  std::vector<std::filesystem::path> pictures;
+  for (const LogLogPlot& plot : plots) {
+    pictures.push_back(plot.file_stem.string() + ".png");
+    pictures.push_back(plot.file_stem.string() + ".svg");
+  }
+  run_gnuplot(gnuplot_script(plots), script_file, pictures);
 }
 
 }  // namespace tumble::app

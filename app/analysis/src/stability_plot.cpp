@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "app/support/file_write.hpp"
 #include "engine/input_error.hpp"
 
 namespace tumble::app {
@@ -121,12 +122,11 @@ std::string heat_map_script(const std::vector<HeatMapPanel>& panels,
 void draw_heat_map(const std::vector<HeatMapPanel>& panels, const std::filesystem::path& png,
                    const std::filesystem::path& svg) {
   try {
-    run_gnuplot(heat_map_script(panels, png, svg), png.parent_path() / ".stability.gp");
+    run_gnuplot(heat_map_script(panels, png, svg), png.parent_path() / ".stability.gp", {png, svg});
+  } catch (const WriteError&) {
+    throw;  // names its file
   } catch (const std::runtime_error& error) {
     throw engine::InputError(std::string("the heat map: ") + error.what());
-  }
-  if (!std::filesystem::exists(png) || !std::filesystem::exists(svg)) {
-    throw engine::InputError("the heat map: gnuplot wrote no picture");
   }
 }
 

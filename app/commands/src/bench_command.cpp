@@ -290,10 +290,14 @@ int bench(const BenchOptions& options, const InterruptGuard& guard, std::ostream
     bar.clear();
     if (guard.interrupted()) throw Interrupted{};
 
-    // Outputs, then the directory into place.
-    write_results_csv(outcome, tmp / "results.csv");
-    write_plots(outcome, tmp);
-    write_report(outcome, tmp / "report.md");
+    // Outputs, then the directory into place; a failed write names the file by its final name.
+    try {
+      write_results_csv(outcome, tmp / "results.csv");
+      write_plots(outcome, tmp);
+      write_report(outcome, tmp / "report.md");
+    } catch (const WriteError& error) {
+      throw output_write_error(error, tmp, options.output);
+    }
     if (guard.interrupted()) throw Interrupted{};
     finish_output_folder(tmp, options.output);
   } catch (const Interrupted&) {

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
@@ -44,6 +45,9 @@ void add_placeholder(CLI::App& cli, const CommandSummary& command) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Past a file size limit (ulimit -f) a write must fail with EFBIG, an error the outputs
+  // report and clean up after, rather than kill the process with SIGXFSZ mid-file.
+  std::signal(SIGXFSZ, SIG_IGN);
   if (argc > 1 && tumble::app::is_drawing_command(argv[1])) return run_drawing_command(argv);
 
   CLI::App cli;

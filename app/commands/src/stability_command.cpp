@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <cstddef>
-#include <fstream>
 #include <ostream>
 
 #include <CLI/CLI.hpp>
@@ -20,6 +19,7 @@
 #include "app/analysis/stability_suite.hpp"
 #include "app/commands/exit_status.hpp"
 #include "app/scene/option_lists.hpp"
+#include "app/support/file_write.hpp"
 #include "app/support/interrupt_guard.hpp"
 #include "app/support/output_folder.hpp"
 #include "engine/input_error.hpp"
@@ -70,11 +70,21 @@ std::vector<StabilityCase> gather_cases(const StabilityOptions& options, std::st
   return cases;
 }
 
-void write_file(const fs::path& file, const std::string& text) {
-  std::ofstream out(file, std::ios::binary);
-  out << text;
-  out.close();
-  if (!out) throw InputError("cannot write " + file.string());
+/// Writes the CSV, the markdown report and the heat map into the temporary folder `temporary`;
+/// a failed write is named by its final name in `output` (nothing is written there).
+void write_outputs(const std::string& suite, const std::vector<StabilityCase>& cases,
+                   const std::vector<engine::IntegratorInfo>& integrators,
+                   const std::vector<StabilityRun>& runs, const fs::path& temporary,
+                   const fs::path& output) {
+  try {
+    write_text_file(temporary / "stability.csv", stability_csv(suite, cases, runs));
+    write_text_file(temporary / "stability.md",
+                    stability_markdown(suite, cases, integrators, runs));
+    draw_heat_map(stability_heat_map(cases, integrators, runs), temporary / "stability.png",
+                  temporary / "stability.svg");
+  } catch (const WriteError& error) {
+    throw output_write_error(error, temporary, output);
+  }
 }
 
 /// A stability output: stability.md under its title (and the suite), beside stability.csv.
@@ -144,10 +154,7 @@ int stability(const StabilityOptions& options, const InterruptGuard& guard, std:
     }
 
     // The outputs, then the folder into place.
-    write_file(temporary / "stability.csv", stability_csv(suite, cases, runs));
-    write_file(temporary / "stability.md", stability_markdown(suite, cases, integrators, runs));
-    draw_heat_map(stability_heat_map(cases, integrators, runs), temporary / "stability.png",
-                  temporary / "stability.svg");
+    write_outputs(suite, cases, integrators, runs, temporary, output);
     if (guard.interrupted()) {
       std::error_code ignored;
       fs::remove_all(temporary, ignored);

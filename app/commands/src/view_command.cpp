@@ -13,7 +13,8 @@ CLI::App& add_view_command(CLI::App& cli, ViewOptions& options) {
       "Keys: Space play/pause, Right step, Backspace reset, - and = slower/faster, Ctrl+P "
       "screenshot, Ctrl+R record, Ctrl+O open, F1 help, Esc/Ctrl+Q quit. Drag to orbit, wheel "
       "to zoom, drop a file to open it. Needs a display (X11; xvfb-run works). Exit status: 0, "
-      "or 1 for bad options or no display; scene and mesh errors show in the window.");
+      "1 for bad options or no display, 130 on Ctrl-C or SIGTERM (a recording in progress is "
+      "discarded); scene and mesh errors show in the window.");
   view.add_option_function<std::string>(
           "FILE", [&](const std::string& value) { options.file = value; },
           "Scene (.json) or mesh file (default: the T-handle demo)")

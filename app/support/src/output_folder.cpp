@@ -102,4 +102,11 @@ void finish_output_folder(const fs::path& tmp, const fs::path& given) {
   if (had_old) fs::remove_all(old, error);
 }
 
+WriteError output_write_error(const WriteError& error, const fs::path& tmp, const fs::path& dir) {
+  fs::path shown = error.file();
+  const fs::path relative = error.file().lexically_relative(tmp);
+  if (!relative.empty() && *relative.begin() != "..") shown = dir / relative;
+  return WriteError(shown, error.reason() + "; nothing written to '" + dir.string() + "'");
+}
+
 }  // namespace tumble::app

@@ -190,6 +190,12 @@ void Viewer::stop_recording() {
   }
 }
 
+bool Viewer::discard_recording() {
+  if (!sink_) return false;
+  sink_.reset();  // an unfinished sink stops its encoder and removes its temporary output
+  return true;
+}
+
 void Viewer::request_screenshot(const std::filesystem::path& path) {
   screenshots_.push_back(path.empty() ? fresh_name(".png") : path);
 }

@@ -12,6 +12,9 @@
 //   exactly as real ones.
 // - The simulation steps on the wall clock (Session::advance), so a slow frame shows less
 //   often, not slower physics.
+// - SIGINT and SIGTERM are caught by an InterruptGuard that the frame loop polls, not by SDL
+//   (which would turn them into a quit, and a quit finishes a recording): an interrupted
+//   viewer discards the recording in progress and exits with 130.
 #include <SDL.h>
 #include <imgui.h>
 
@@ -26,6 +29,7 @@
 #include <utility>
 #include <vector>
 
+#include "app/support/interrupt_guard.hpp"
 #include "app/video/render_job.hpp"
 #include "app/viewer/view_options.hpp"
 #include "app/viewer/viewer.hpp"
@@ -41,6 +45,9 @@ namespace {
 
 using viewer::InputEvent;
 
+/// The exit status of an interrupted command (app/commands/exit_status.hpp).
+constexpr int kExitInterrupted = 130;
+
 /// SDL's video subsystem, for the software renderer; quit when it goes, if it started.
 class SdlVideo {
  public:
@@ -54,6 +61,8 @@ class SdlVideo {
   /// False when SDL cannot start (SDL_GetError says why).
   bool start() {
     SDL_SetHint(SDL_HINT_FRAMEBUFFER_ACCELERATION, "0");
+    // SIGINT and SIGTERM are the InterruptGuard's, never a quit event.
+    SDL_SetHint(SDL_HINT_NO_SIGNAL_HANDLERS, "1");
     SDL_SetHint(SDL_HINT_RENDER_DRIVER, "software");
     started_ = SDL_Init(SDL_INIT_VIDEO) == 0;
     return started_;
@@ -183,8 +192,12 @@ class ViewerWindow {
  public:
   /// Sets up the renderer, ImGui and the viewer, and opens the scene the options name.
   ViewerWindow(const ViewOptions& options, SdlWindow& window, WindowPlan plan);
-  /// Runs frames until a quit or --exit-after, then stops any recording.
-  void run();
+  /// Runs frames until a quit or --exit-after, then stops any recording; or until `guard`
+  /// caught a signal, leaving a recording as it is. Returns false when interrupted.
+  bool run(const InterruptGuard& guard);
+  /// After an interrupted run: discards the recording in progress (nothing under its name)
+  /// and says so in one line on `err`. Returns kExitInterrupted.
+  int report_interrupted(const InterruptGuard& guard, std::ostream& err);
   /// --stats on `out`; the errors still shown on `err`.
   void report(std::ostream& out, std::ostream& err) const;
 
@@ -234,10 +247,11 @@ ViewerWindow::ViewerWindow(const ViewOptions& options, SdlWindow& window, Window
   viewer_.session().set_paused(options.paused);
 }
 
-void ViewerWindow::run() {
+bool ViewerWindow::run(const InterruptGuard& guard) {
   start_ = Clock::now();
   Clock::time_point last = start_;
   for (;;) {
+    if (guard.interrupted()) return false;
     const Clock::time_point now = Clock::now();
     const double wall = seconds_between(last, now);
     const double since_start = seconds_between(start_, now);
@@ -250,7 +264,19 @@ void ViewerWindow::run() {
     frame_clock_.add(seconds_between(now, Clock::now()));
     if (last_frame) break;
   }
+  if (guard.interrupted()) return false;  // came with the last frame: still not a quit
   if (viewer_.recording()) viewer_.stop_recording();
+  return true;
+}
+
+int ViewerWindow::report_interrupted(const InterruptGuard& guard, std::ostream& err) {
+  const std::filesystem::path recording = viewer_.recording_path();
+  err << "tumble view: interrupted by " << guard.signal_name();
+  if (viewer_.discard_recording()) {
+    err << "; recording discarded, nothing written to '" << recording.string() << "'";
+  }
+  err << "\n";
+  return kExitInterrupted;
 }
 
 void ViewerWindow::handle_input(double since_start) {
@@ -325,13 +351,15 @@ int run_viewer_window(const ViewOptions& options, std::ostream& out, std::ostrea
            "xvfb-run\n";
     return 1;
   }
+  // Caught from before the window opens (SDL's default handlers are off as well).
+  const InterruptGuard guard;
   SdlWindow window;
   if (!window.open(plan.width, plan.height)) {
     err << "tumble view: cannot open a window: " << SDL_GetError() << "\n";
     return 1;
   }
   ViewerWindow viewer_window(options, window, std::move(plan));
-  viewer_window.run();
+  if (!viewer_window.run(guard)) return viewer_window.report_interrupted(guard, err);
   viewer_window.report(out, err);
   return 0;
 }

@@ -22,6 +22,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
+using ::testing::Not;
 using tumble::testing::directory_entries;
 using tumble::testing::read_text;
 using tumble::testing::run_command;
@@ -172,6 +173,24 @@ TEST_F(SafeIo, InterruptedBenchLeavesNothingAndExitsWith130) {
   EXPECT_EQ(result.status, kExitInterrupted) << result.err;
   EXPECT_THAT(result.err, HasSubstr("tumble bench: interrupted by SIGINT; nothing written to '" +
                                     path("out") + "'\n"));
+  EXPECT_EQ(directory_entries(dir_), std::vector<std::string>{"scene.json"});
+}
+
+TEST_F(SafeIo, BenchStopsWithinALongCase) {
+  // The second case, rk4 at dt 1e-5 over 2000 s (2e8 steps, a minute or more per run), is
+  // running when SIGTERM comes: the run must stop there, not at the end of the case. `timeout`
+  // turns a run that does not stop into status 137 (SIGKILL) long before the case ends;
+  // --foreground, or it would pass the signal on twice (to the child and to its group), and
+  // the second would stop tumble at once.
+  const std::string scene = write_scene(spinning_scene(2000.0, 0.5));
+  const auto result =
+      interrupt("timeout --foreground -s KILL 60 " + tumble_executable() + " bench " + scene +
+                    " --integrators rk4 --dts 0.5,1e-5 --repeat 1 -o " + path("out"),
+                "out", "TERM");
+  EXPECT_EQ(result.status, kExitInterrupted) << result.err;
+  EXPECT_THAT(result.err, HasSubstr("tumble bench: interrupted by SIGTERM; nothing written to '" +
+                                    path("out") + "'\n"));
+  EXPECT_THAT(result.err, Not(HasSubstr("[2/2]")));
   EXPECT_EQ(directory_entries(dir_), std::vector<std::string>{"scene.json"});
 }
 

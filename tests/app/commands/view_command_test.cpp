@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -19,6 +20,7 @@
 namespace tumble::app {
 namespace {
 
+namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using tumble::testing::PixelRegion;
 using tumble::testing::pixels_differing;
@@ -182,6 +184,33 @@ TEST_F(ViewCommand, CtrlPWritesAScreenshotAndCtrlRRecordsAVideo) {
   // Two seconds of wall time at 30 frames/s (give or take the frames around the key presses).
   const int frames = std::stoi(probe.substr(probe.rfind(',') + 1));
   EXPECT_NEAR(frames, 61, 6);
+}
+
+TEST_F(ViewCommand, AnInterruptDiscardsTheRecordingAndExitsWith130) {
+  // Ctrl+R records to t_handle_flip-1.mp4 through `.t_handle_flip-1.mp4.tmp-PID`; once that
+  // temporary is there (waited for, not timed: the viewer may start slowly under load), the
+  // signal goes to PID, the viewer itself. The script's quit only ends a run that missed it.
+  // The viewer's own status is kept in a file: xvfb-run's can be 5 when Xvfb's SIGUSR1 at its
+  // reset interrupts the removal of xvfb-run's temporary folder.
+  std::ofstream(dir_ / "script.txt") << "0.2 key ctrl+r\n60 quit\n";
+  const fs::path status_file = dir_.string() + "-status";
+  for (const std::string signal : {"INT", "TERM"}) {
+    const auto result = run_command(
+        "cd '" + dir_.string() + "' && (env --default-signal=INT xvfb-run -a -s '-screen 0 " +
+        "1280x800x24' sh -c '\"$0\" view \"$1\" --script script.txt --output-dir . </dev/null; "
+        "echo $? >\"$2\"' '" +
+        tumble_executable() + "' '" + demo() + "' '" + status_file.string() +
+        "' & pid=$!; tmp=; for i in $(seq 1500); do tmp=$(ls -a | grep "
+        "'^\\.t_handle_flip-1\\.mp4\\.tmp-' | head -n 1); [ -n \"$tmp\" ] && break; sleep "
+        "0.02; done; sleep 0.3; kill -" +
+        signal + " \"${tmp##*-}\"; wait $pid)");
+    EXPECT_EQ(tumble::testing::read_text(status_file), "130\n") << result.err;
+    fs::remove(status_file);
+    EXPECT_THAT(result.err, HasSubstr("tumble view: interrupted by SIG" + signal +
+                                      "; recording discarded, nothing written to "
+                                      "'./t_handle_flip-1.mp4'\n"));
+    EXPECT_EQ(tumble::testing::directory_entries(dir_), std::vector<std::string>{"script.txt"});
+  }
 }
 
 TEST_F(ViewCommand, ABadDroppedFileShowsAnErrorAndTheViewerKeepsRunning) {

@@ -1,5 +1,7 @@
 #pragma once
-// The outputs of `tumble bench`: results.csv, the work-precision plots and report.md.
+// The outputs of `tumble bench`: results.csv, the work-precision plots and report.md. Every
+// writer checks every write (and gnuplot's pictures, which gnuplot itself does not): a failed
+// one throws WriteError (app/support/file_write.hpp) naming the file.
 
 #include <cstddef>
 #include <filesystem>

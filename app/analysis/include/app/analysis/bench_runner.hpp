@@ -54,7 +54,10 @@ struct CaseResult {
 };
 
 /// Runs `c` once with the error meter, then `repeat` timed runs; the median of the timed runs.
-CaseResult run_case(const BenchScene& scene, const BenchCase& c, int repeat);
+/// `stop` (an interrupt) is asked every 1024 steps of every run, timed ones included (adaptive
+/// runs: every output step); when it returns true the case is abandoned, nothing returned.
+std::optional<CaseResult> run_case(const BenchScene& scene, const BenchCase& c, int repeat,
+                                   const std::function<bool()>& stop = {});
 
 /// The cores this process may run on (sched_getaffinity).
 std::vector<int> available_cores();
@@ -62,7 +65,8 @@ std::vector<int> available_cores();
 /// Runs every case on min(jobs, cores) workers, each pinned to its own core, so no two timed
 /// loops share a core. `done(index, result, finished_count)` is called (serialised) after each
 /// case. Returns the results in the order of `cases`; when `stop` returns true (checked before
-/// each case: an interrupt), the cases not started are left out and their results stay empty.
+/// each case and within it, see run_case: an interrupt), the cases not finished are left out
+/// and their results stay empty.
 std::vector<CaseResult> run_cases(
     const std::vector<BenchScene>& scenes, const std::vector<BenchCase>& cases, int repeat,
     std::size_t workers,

@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <string>
 
+#include "app/support/file_write.hpp"
+
 namespace tumble::app {
 
 /// What marks a folder as an earlier output of a command, which may be replaced: a report file
@@ -28,5 +30,11 @@ std::filesystem::path start_output_folder(const std::filesystem::path& dir,
 /// Moves the finished .DIR.tmp-PID into place, replacing an earlier DIR (moved aside first and
 /// removed last). Throws engine::InputError naming -o and the folder.
 void finish_output_folder(const std::filesystem::path& tmp, const std::filesystem::path& dir);
+
+/// The error of a failed write into the temporary folder `tmp` of `dir`, naming the file by the
+/// name it was to have: "cannot write 'DIR/NAME': REASON; nothing written to 'DIR'" (the
+/// temporary folder is removed by the caller). A file outside `tmp` keeps its own name.
+WriteError output_write_error(const WriteError& error, const std::filesystem::path& tmp,
+                              const std::filesystem::path& dir);
 
 }  // namespace tumble::app

@@ -31,7 +31,10 @@ std::optional<std::filesystem::path> default_view_scene();
 
 /// Runs the viewer's window until it closes. Returns 0, or 1 with one line on `err` when the
 /// options are wrong, there is no display, or this build has no viewer. Scene and mesh errors
-/// show in the window, which keeps running.
+/// show in the window, which keeps running. SIGINT or SIGTERM closes the window at the end of
+/// the frame and returns 130 with one line on `err`, "tumble view: interrupted by SIGINT",
+/// adding "; recording discarded, nothing written to 'PATH'" when a recording was in progress
+/// (its temporary output is removed; a recording is finished only by stopping it or quitting).
 int run_viewer_window(const ViewOptions& options, std::ostream& out, std::ostream& err);
 
 }  // namespace tumble::app

@@ -81,6 +81,9 @@ class Viewer {
   void start_recording(const std::filesystem::path& path = {});
   /// Finishes the video (posted with its frame count).
   void stop_recording();
+  /// Abandons the recording in progress unfinished: its temporary output is removed and
+  /// nothing is written under its name (an interrupted viewer). False when none was running.
+  bool discard_recording();
   const std::filesystem::path& recording_path() const { return recording_path_; }
   /// Writes the next drawn window to `path` (PNG; empty: a new name in the output folder).
   void request_screenshot(const std::filesystem::path& path = {});
