@@ -128,6 +128,7 @@ void send_mesh(const PipeWriter& out, const TriangleMesh& mesh, const ImportStat
   out.bytes(mesh.triangles.data(), mesh.triangles.size() * sizeof(mesh.triangles[0]));
 }
 
+#ifndef TUMBLE_ADDRESS_SANITIZER
 /// The child's address space now, to which the memory budget is added.
 std::uint64_t current_address_space() {
   std::ifstream statm("/proc/self/statm");
@@ -135,6 +136,7 @@ std::uint64_t current_address_space() {
   statm >> pages;
   return pages * static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
 }
+#endif
 
 void set_child_limits(const ImportLimits& limits) {
   const rlimit no_core{0, 0};

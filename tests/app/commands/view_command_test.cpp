@@ -86,11 +86,23 @@ class ViewCommand : public tumble::testing::CommandTest {
   }
 
   /// Runs the viewer under Xvfb with `script` (written to the test's folder), outputs there.
+  /// Runs `tumble view ARGUMENTS --script` (SCRIPT) under xvfb-run. The status returned is the
+  /// viewer's own, kept in a file: xvfb-run's can be 5 when Xvfb's SIGUSR1 at its reset
+  /// interrupts the removal of xvfb-run's temporary folder (seen under ctest -j2).
   tumble::testing::CommandResult view(const std::string& script, const std::string& arguments) {
     std::ofstream(dir_ / "script.txt") << script;
-    return run_command("cd '" + dir_.string() + "' && xvfb-run -a -s '-screen 0 1280x800x24' '" +
-                       tumble_executable() + "' view " + arguments +
-                       " --script script.txt --output-dir . </dev/null");
+    const fs::path status_file = dir_.string() + "-status";
+    fs::remove(status_file);
+    auto result =
+        run_command("cd '" + dir_.string() +
+                    "' && xvfb-run -a -s '-screen 0 1280x800x24' sh -c '\"$0\" view "
+                    "\"$@\" --script script.txt --output-dir . </dev/null; echo $? >" +
+                    status_file.string() + "' '" + tumble_executable() + "' " + arguments);
+    if (fs::exists(status_file)) {
+      result.status = std::stoi(tumble::testing::read_text(status_file));
+      fs::remove(status_file);
+    }
+    return result;
   }
 
   render::Image shot(const std::string& name) const { return render::read_png(dir_ / name); }
