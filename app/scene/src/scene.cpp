@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/scene/json_field.hpp"
+#include "app/scene/shape_field.hpp"
 #include "app/scene/strict_json.hpp"
 #include "app/support/text_file.hpp"
 #include "engine/input_error.hpp"
@@ -131,40 +132,50 @@ void parse_body_name(const Field& field, std::size_t index, BodyDescription& bod
   }
 }
 
-/// Shape: a mesh (relative to the scene's folder) or an inertia, never both.
+/// Shape: a mesh (relative to the scene's folder), a primitive shape or an inertia: one only.
 void parse_body_shape(const Field& field, const std::filesystem::path& folder,
                       BodyDescription& body) {
   const auto mesh = field.find("mesh");
+  const auto shape = field.find("shape");
   const auto inertia = field.find("inertia");
-  if (mesh.has_value() == inertia.has_value()) {
-    field.fail(mesh ? "expected exactly one of \"mesh\" or \"inertia\", got both"
-                    : "expected exactly one of \"mesh\" (a file) or \"inertia\" "
-                      "({\"principal\": [..]} or {\"tensor\": [[..], [..], [..]]}), got neither");
+  const int given = int(mesh.has_value()) + int(shape.has_value()) + int(inertia.has_value());
+  if (given != 1) {
+    field.fail(given ? "expected exactly one of \"mesh\", \"shape\" or \"inertia\", got " +
+                           std::to_string(given) + " of them"
+                     : "expected exactly one of \"mesh\" (a file), \"shape\" ({\"box\": [x, y, "
+                       "z]}, {\"sphere\": {\"radius\": r}}, ...) or \"inertia\" ({\"principal\": "
+                       "[..]} or {\"tensor\": [[..], [..], [..]]}), got none");
   }
   if (mesh) {
     const std::string text = mesh->string();
     if (text.empty()) mesh->fail("expected a mesh file path, got an empty string");
     const std::filesystem::path path(text);
     body.mesh = path.is_absolute() ? path : folder / path;
+  } else if (shape) {
+    body.shape = parse_shape(*shape);
   } else {
     parse_inertia(*inertia, body);
   }
 }
 
-/// Matter: mass or density with a mesh, mass with an inertia; scale with a mesh only.
+/// Matter: mass or density with a mesh or shape, mass with an inertia; scale with a mesh only.
 void parse_body_matter(const Field& field, BodyDescription& body) {
   const bool mesh = body.mesh.has_value();
+  const bool solid = mesh || body.shape.has_value();
   const auto mass = field.find("mass");
   const auto density = field.find("density");
   if (mass && density) density->fail("\"mass\" and \"density\" exclude each other: give one");
   if (mass) body.mass = mass->positive();
   if (density) {
-    if (!mesh) density->fail("\"density\" needs a mesh; with \"inertia\" give \"mass\"");
+    if (!solid) {
+      density->fail("\"density\" needs a mesh or a shape; with \"inertia\" give \"mass\"");
+    }
     body.density = density->positive();
   }
   if (!mass && !density) {
-    field.fail(mesh ? "missing \"mass\" (kg) or \"density\" (kg/m^3) for the mesh"
-                    : "missing \"mass\" (kg): the inertia alone does not fix it");
+    field.fail(solid ? std::string("missing \"mass\" (kg) or \"density\" (kg/m^3) for the ") +
+                           (mesh ? "mesh" : "shape")
+                     : "missing \"mass\" (kg): the inertia alone does not fix it");
   }
   if (auto scale = field.find("scale")) {
     if (!mesh) scale->fail("\"scale\" applies to a mesh only (mesh units to metres)");
@@ -203,7 +214,7 @@ void parse_loads(const Field& field, BodyDescription& body) {
 
 BodyDescription parse_body(const Field& field, std::size_t index,
                            const std::filesystem::path& folder) {
-  field.expect_object({"name", "mesh", "inertia", "mass", "density", "scale", "position",
+  field.expect_object({"name", "mesh", "shape", "inertia", "mass", "density", "scale", "position",
                        "orientation", "velocity", "angular_velocity", "angular_velocity_frame",
                        "pivot", "torque", "torque_frame", "spring"});
   BodyDescription body;

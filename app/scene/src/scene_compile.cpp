@@ -59,10 +59,30 @@ engine::MeshReport import_body_mesh(const BodyDescription& body, const std::stri
   return report;
 }
 
+/// A shape body's matter from the closed forms (engine/PHYSICS.md §9): the body frame is the
+/// shape's own, whose origin is its centre of mass; its tessellation is kept when asked for.
+BodyMatter shape_matter(const BodyDescription& body, std::size_t index, const std::string& where,
+                        bool keep_geometry, CompiledScene& out) {
+  const engine::Shape& shape = *body.shape;
+  BodyMatter matter;
+  try {
+    const engine::MassProperties properties =
+        body.mass ? engine::mass_properties_of_mass(shape, *body.mass)
+                  : engine::mass_properties(shape, body.density.value());
+    matter.mass = properties.mass;
+    matter.inertia_com = properties.inertia;
+    if (keep_geometry) out.geometry[index] = engine::tessellate(shape, kShapeSegments);
+  } catch (const InputError& error) {
+    throw InputError(where + ".shape: " + error.what());
+  }
+  return matter;
+}
+
 /// The body's matter, from its mesh (kept in `out` at `index`: report, and geometry when
-/// asked for) or from its given inertia.
+/// asked for), its shape or its given inertia.
 BodyMatter body_matter(const BodyDescription& body, std::size_t index, const std::string& where,
                        bool keep_geometry, CompiledScene& out) {
+  if (body.shape) return shape_matter(body, index, where, keep_geometry, out);
   BodyMatter matter;
   if (!body.mesh) {
     matter.mass = body.mass.value();

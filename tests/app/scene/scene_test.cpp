@@ -242,11 +242,13 @@ TEST(SceneErrors, BodiesMustBeANonEmptyArray) {
 
 TEST(SceneErrors, ExactlyOneOfMeshOrInertia) {
   EXPECT_THAT(error_of(with_body("mesh", "box.obj")),
-              HasSubstr("bodies[0]: expected exactly one of \"mesh\" or \"inertia\", got both"));
+              HasSubstr("bodies[0]: expected exactly one of \"mesh\", \"shape\" or \"inertia\", "
+                        "got 2 of them"));
   json scene = base_scene();
   scene["bodies"][0].erase("inertia");
-  EXPECT_THAT(error_of(scene), HasSubstr("bodies[0]: expected exactly one of \"mesh\" (a file) or "
-                                         "\"inertia\""));
+  EXPECT_THAT(error_of(scene), AllOf(HasSubstr("bodies[0]: expected exactly one of \"mesh\" (a "
+                                               "file), \"shape\" ({\"box\": [x, y, z]}"),
+                                     HasSubstr("got none")));
   EXPECT_THAT(error_of(with_body("inertia", {{"principal", {1, 2, 3}},
                                              {"tensor", {{1, 0, 0}, {0, 2, 0}, {0, 0, 3}}}})),
               HasSubstr("bodies[0].inertia: expected exactly one of \"principal\""));

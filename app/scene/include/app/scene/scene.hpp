@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/mesh_analysis.hpp"
+#include "engine/primitive_shapes.hpp"
 #include "engine/rigid_body.hpp"
 #include "engine/simulation.hpp"
 #include "engine/triangle_mesh.hpp"
@@ -39,15 +40,17 @@ struct SpringDescription {
   double damping = 0.0;                              ///< N s/m
 };
 
-/// One body as the scene file describes it. Exactly one of `mesh`, `principal_moments`,
-/// `inertia_tensor` is set; with a mesh exactly one of `mass`, `density`, without one `mass`.
+/// One body as the scene file describes it. Exactly one of `mesh`, `shape`,
+/// `principal_moments`, `inertia_tensor` is set; with a mesh or a shape exactly one of `mass`,
+/// `density`, with an inertia `mass`.
 struct BodyDescription {
   std::string name;
   std::optional<std::filesystem::path> mesh;           ///< resolved against the scene's folder
+  std::optional<engine::Shape> shape;                  ///< a primitive solid, validated
   std::optional<Eigen::Vector3d> principal_moments;    ///< kg m^2, about the centre of mass
   std::optional<Eigen::Matrix3d> inertia_tensor;       ///< kg m^2, about the centre of mass
   std::optional<double> mass;                          ///< kg
-  std::optional<double> density;                       ///< kg/m^3 (mesh only)
+  std::optional<double> density;                       ///< kg/m^3 (mesh or shape only)
   double scale = 1.0;                                  ///< mesh units to metres (mesh only)
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< centre of mass, world, m
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  ///< body to world, unit
@@ -80,9 +83,10 @@ struct SceneDescription {
 /// Top level: "duration", "dt" (required, positive, finite, dt <= duration), "bodies"
 /// (required, non-empty array); optional "name" (default: the file's stem), "integrator"
 /// (default "rk4"), "tolerance" (positive), "gravity" ([x, y, z]; absent: no gravity).
-/// Body: "name" (default "body<i>", unique, non-empty); exactly one of "mesh" (path) and
-/// "inertia" ({"principal": [I1, I2, I3]} or {"tensor": [[..], [..], [..]]}); with a mesh
-/// exactly one of "mass" and "density", without one "mass"; "scale" (mesh only, positive);
+/// Body: "name" (default "body<i>", unique, non-empty); exactly one of "mesh" (path),
+/// "shape" (a primitive solid, app/scene/shape_field.hpp) and "inertia" ({"principal":
+/// [I1, I2, I3]} or {"tensor": [[..], [..], [..]]}); with a mesh or a shape exactly one of
+/// "mass" and "density", with an inertia "mass"; "scale" (mesh only, positive);
 /// "position", "orientation" ([w, x, y, z], any non-zero quaternion, normalised),
 /// "velocity" (not with "pivot"), "angular_velocity", "angular_velocity_frame" ("world" by
 /// default or "body"), "pivot", "torque", "torque_frame", "spring" ({"anchor", "attach",
@@ -118,12 +122,16 @@ struct CompiledScene {
   engine::SimulationSettings settings;
   std::size_t meshes_imported = 0;  ///< mesh files read (0 when every inertia is given)
   /// Per body, its mesh in the body frame (the file's axes moved to the centre of mass,
-  /// metres), when the body has a mesh; kept only when compile_scene is asked for it.
+  /// metres), when the body has a mesh, or its shape's tessellation (kShapeSegments) when it
+  /// has a shape; kept only when compile_scene is asked for it.
   std::vector<std::optional<engine::TriangleMesh>> geometry;
   /// Per body, the mass-property report of its mesh (what `tumble inspect` prints), when it
   /// has one.
   std::vector<std::optional<engine::MeshReport>> reports;
 };
+
+/// Segments about the axis of a shape body's drawn tessellation (engine::tessellate).
+inline constexpr int kShapeSegments = 64;
 
 /// Imports meshes, computes mass properties about each rotation centre and builds the initial
 /// states. Mesh errors come back with the body's JSON path in front. Throws engine::InputError.
