@@ -26,6 +26,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <future>
 #include <map>
 #include <utility>
 
@@ -41,9 +43,20 @@ using Ray = Kernel::Ray_3;
 using Vector = Kernel::Vector_3;
 using SurfaceMesh = CGAL::Surface_mesh<Point>;
 using Face = std::array<std::uint32_t, 3>;
-// The id of a box is its face's address: stable when the algorithm copies the boxes.
-using Box = CGAL::Box_intersection_d::Box_with_handle_d<double, 3, const Face*,
+// A face's box in floats rounded outward (half the memory of doubles; a box only a little too
+// large just adds a candidate pair for the exact tests). Its id is its face's address: stable
+// when the algorithm copies the boxes.
+using Box = CGAL::Box_intersection_d::Box_with_handle_d<float, 3, const Face*,
                                                         CGAL::Box_intersection_d::ID_FROM_HANDLE>;
+
+/// What the face pairs of one thread found: per part, then per pair of parts.
+struct FaceCounts {
+  std::size_t repeated = 0, mirrored = 0, crossing = 0;
+};
+struct PairCounts {
+  std::vector<FaceCounts> parts;
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> meeting;
+};
 
 /// What the triangle pairs of pass 1 found.
 struct PartTally {
@@ -65,8 +78,9 @@ class Analysis {
 
  private:
   void tally_parts();
-  void test_pair(std::uint32_t t, std::uint32_t u);
-  void test_same_part(std::uint32_t t, std::uint32_t u, PartTally& part);
+  void find_face_pairs();
+  void test_pair(std::uint32_t t, std::uint32_t u, PairCounts& counts) const;
+  void test_same_part(std::uint32_t t, std::uint32_t u, FaceCounts& part) const;
   bool straddles(const Face& a, const Face& b) const;
   void judge_parts(std::uint32_t i, std::uint32_t j, PartOverlaps& out);
   bool judge_meeting(std::uint32_t i, std::uint32_t j, std::size_t pairs, PartOverlaps& out);
@@ -126,10 +140,13 @@ int shared_vertices(const Face& t, const Face& u, int& corner_t, int& corner_u) 
   return shared;
 }
 
-/// Whether the corners of `a` lie strictly on both sides of the plane of `b`.
+/// Whether the corners of `a` lie strictly on both sides of the plane of `b`. Corners `a`
+/// shares with `b` lie on that plane and are not tested (an exact zero would defeat the
+/// predicates' floating-point filter and cost an exact evaluation).
 bool Analysis::straddles(const Face& a, const Face& b) const {
   bool positive = false, negative = false;
   for (const std::uint32_t v : a) {
+    if (v == b[0] || v == b[1] || v == b[2]) continue;
     const CGAL::Orientation side =
         CGAL::orientation(points_[b[0]], points_[b[1]], points_[b[2]], points_[v]);
     positive |= side == CGAL::POSITIVE;
@@ -143,7 +160,7 @@ bool Analysis::straddles(const Face& a, const Face& b) const {
 /// touch along their boundaries do not, nor do faces in one plane: an inner double wall (two
 /// solids face to face) lies there, and so does a non-convex face fanned into triangles that
 /// overlap and cancel, which still bounds the right volume.
-void Analysis::test_same_part(std::uint32_t t, std::uint32_t u, PartTally& part) {
+void Analysis::test_same_part(std::uint32_t t, std::uint32_t u, FaceCounts& part) const {
   const Face &ft = faces_[t], &fu = faces_[u];
   int ct = 0, cu = 0;
   const int shared = shared_vertices(ft, fu, ct, cu);
@@ -170,13 +187,12 @@ void Analysis::test_same_part(std::uint32_t t, std::uint32_t u, PartTally& part)
   ++part.crossing;
 }
 
-void Analysis::test_pair(std::uint32_t t, std::uint32_t u) {
-  if (degenerate_[t] || degenerate_[u]) return;
+void Analysis::test_pair(std::uint32_t t, std::uint32_t u, PairCounts& counts) const {
   const std::uint32_t pt = triangle_part_[t], pu = triangle_part_[u];
   if (pt == pu) {
-    test_same_part(t, u, parts_[pt]);
+    test_same_part(t, u, counts.parts[pt]);
   } else if (CGAL::do_intersect(triangle(t), triangle(u))) {
-    ++meeting_[std::minmax(pt, pu)];  // parts share no vertex: a plain triangle test
+    ++counts.meeting[std::minmax(pt, pu)];  // parts share no vertex: a plain triangle test
   }
 }
 
@@ -319,19 +335,58 @@ void Analysis::judge_parts(std::uint32_t i, std::uint32_t j, PartOverlaps& out) 
   if (const auto w = winding_around_part(i, j); w && *w != 0) out.nesting.push_back({j, i, *w});
 }
 
-PartOverlaps Analysis::run() {
-  tally_parts();
+/// Pass 1 on two threads: the faces are split at the median of their boxes' low x; a pair
+/// whose boxes meet is tested by the half holding the larger of their low x, so once.
+void Analysis::find_face_pairs() {
   std::vector<Box> boxes;
   boxes.reserve(faces_.size());
   for (std::uint32_t t = 0; t < faces_.size(); ++t) {
-    if (!degenerate_[t]) boxes.emplace_back(triangle(t).bbox(), &faces_[t]);
+    if (degenerate_[t]) continue;
+    const CGAL::Bbox_3 box = triangle(t).bbox();
+    float low[3], high[3];
+    for (int axis = 0; axis < 3; ++axis) {
+      low[axis] = std::nextafter(static_cast<float>(box.min(axis)), -INFINITY);
+      high[axis] = std::nextafter(static_cast<float>(box.max(axis)), INFINITY);
+    }
+    boxes.emplace_back(low, high, &faces_[t]);
   }
-  const auto index = [this](const Box& box) {
-    return static_cast<std::uint32_t>(box.handle() - faces_.data());
-  };
-  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(),
-                                [&](const Box& a, const Box& b) { test_pair(index(a), index(b)); });
+  std::vector<float> lows(boxes.size());
+  for (std::size_t i = 0; i < boxes.size(); ++i) lows[i] = boxes[i].min_coord(0);
+  const auto middle = lows.begin() + static_cast<std::ptrdiff_t>(lows.size() / 2);
+  std::nth_element(lows.begin(), middle, lows.end());
+  const float split = lows.empty() ? 0.0f : *middle;
+  std::vector<Box> upper;
+  for (const Box& box : boxes) {
+    if (box.max_coord(0) >= split) upper.push_back(box);
+  }
+  std::erase_if(boxes, [split](const Box& box) { return box.min_coord(0) >= split; });
 
+  const auto scan = [this, split](std::vector<Box>& half, bool is_upper, PairCounts& counts) {
+    counts.parts.resize(parts_.size());
+    CGAL::box_self_intersection_d(half.begin(), half.end(), [&](const Box& a, const Box& b) {
+      if ((std::max(a.min_coord(0), b.min_coord(0)) >= split) != is_upper) return;
+      test_pair(static_cast<std::uint32_t>(a.handle() - faces_.data()),
+                static_cast<std::uint32_t>(b.handle() - faces_.data()), counts);
+    });
+  };
+  PairCounts lower_counts, upper_counts;
+  std::future<void> other =
+      std::async(std::launch::async, [&] { scan(upper, true, upper_counts); });
+  scan(boxes, false, lower_counts);
+  other.get();
+  for (const PairCounts* counts : {&lower_counts, &upper_counts}) {
+    for (std::size_t i = 0; i < parts_.size(); ++i) {
+      parts_[i].repeated += counts->parts[i].repeated;
+      parts_[i].mirrored += counts->parts[i].mirrored;
+      parts_[i].crossing += counts->parts[i].crossing;
+    }
+    for (const auto& [pair, count] : counts->meeting) meeting_[pair] += count;
+  }
+}
+
+PartOverlaps Analysis::run() {
+  tally_parts();
+  find_face_pairs();
   PartOverlaps out;
   for (std::uint32_t i = 0; i < parts_.size(); ++i) {
     const PartTally& part = parts_[i];
