@@ -38,6 +38,14 @@ std::string OverlapPolicy::describe(const OverlapFinding& f) const {
              " repeated with the same orientation), so its volume (" +
              volume_text(f.shared_volume) + ") " + counts_twice();
     case OverlapKind::kCancelling:
+      if (f.approximate) {
+        return part(f.first) +
+               " is a surface and an inverted copy of it at the same place, apart from "
+               "rounding (its faces cross at " +
+               pairs +
+               " and its signed volume cancels to 1e-6 of theirs): the two cancel, so "
+               "it adds no volume";
+      }
       return part(f.first) + " is a surface and its mirror image at the same place (" + pairs +
              " repeated with opposite orientations): the two cancel, so it adds no volume";
     case OverlapKind::kCross:

@@ -65,6 +65,7 @@ struct PartTally {
   std::size_t mirrored = 0;        ///< pairs of the same face, opposite orientations
   std::size_t crossing = 0;        ///< pairs that cross or fold onto each other
   double signed_volume = 0.0;      ///< times 6, about the part's first vertex
+  double absolute_volume = 0.0;    ///< sum of |det|: the rounding scale of signed_volume
   std::uint32_t first_vertex = 0;  ///< reference of signed_volume
   CGAL::Bbox_3 box;
   std::vector<std::uint32_t> faces;  ///< its triangles
@@ -122,7 +123,9 @@ void Analysis::tally_parts() {
     part.faces.push_back(t);
     const Point& r = points_[part.first_vertex];
     const Vector a = points_[f[0]] - r, b = points_[f[1]] - r, c = points_[f[2]] - r;
-    part.signed_volume += a * CGAL::cross_product(b, c);
+    const double det = a * CGAL::cross_product(b, c);
+    part.signed_volume += det;
+    part.absolute_volume += std::abs(det);
     part.box += triangle(t).bbox();
     if (!degenerate_[t]) ++part.triangles;
   }
@@ -397,6 +400,12 @@ PartOverlaps Analysis::run() {
       finding.shared_volume = std::abs(part.signed_volume) / 12.0;  // half of it, det / 6
     } else if (part.triangles > 0 && 2 * part.mirrored == part.triangles) {
       finding = make_finding(OverlapKind::kCancelling, i, i, part.mirrored);
+    } else if (part.repeated == 0 && finding.face_pairs > 0 &&
+               std::abs(part.signed_volume) <= 1e-6 * part.absolute_volume) {
+      // Crossing faces and no volume: a surface and an inverted copy at the same place whose
+      // vertices differ by rounding (or triangulated another way), not matter counted twice.
+      finding.kind = OverlapKind::kCancelling;
+      finding.approximate = true;
     } else if (finding.face_pairs == 0) {
       continue;
     }

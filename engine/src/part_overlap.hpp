@@ -19,7 +19,7 @@ namespace tumble::engine::detail {
 enum class OverlapKind {
   kSelfIntersection,  ///< faces of one part cross (or overlap in one plane, facing one way)
   kDuplicate,         ///< every face of the part is there twice, same place and orientation
-  kCancelling,        ///< every face of the part is there twice with opposite orientations
+  kCancelling,        ///< the part is a surface and its mirror image: no volume
   kCross,             ///< the surfaces of two parts cross: their volumes overlap
   kUndecided,         ///< the surfaces of two parts meet; touch or cross could not be decided
 };
@@ -33,6 +33,9 @@ struct OverlapFinding {
   /// kCross of two parts facing opposite ways: `second` (the smaller, an inward cavity or an
   /// outward part in an inward shell) reaches `shared_volume` outside `first`.
   bool cavity = false;
+  /// kCancelling without exact mirror pairs: the faces cross (`face_pairs`) and the part's
+  /// signed volume cancels to 1e-6 of the volume its faces span.
+  bool approximate = false;
 };
 
 /// Containment between two parts whose surfaces do not cross.
