@@ -46,7 +46,7 @@ struct PartNesting {
 };
 
 struct PartOverlaps {
-  std::vector<OverlapFinding> findings;  ///< sorted by parts, then kind
+  std::vector<OverlapFinding> findings;  ///< within parts by part, then pairs of parts in order
   std::vector<PartNesting> nesting;      ///< every part pair with a non-zero winding
 };
 
