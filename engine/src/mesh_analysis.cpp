@@ -5,16 +5,18 @@
 // topology on the welded mesh. Orientation is judged per connected part from signed volumes:
 // all parts inside out means the whole file is inverted (flip, warn); an inside-out part that
 // lies inside another part is a cavity; one that lies inside nothing is flipped with a warning.
+// Containment, crossing and repeated surfaces are decided by exact predicates (part_overlap.hpp).
 #include "engine/mesh_analysis.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <future>
-#include <numbers>
 #include <sstream>
 
 #include "engine/input_error.hpp"
 #include "engine/mesh_topology.hpp"
+#include "overlap_policy.hpp"
+#include "part_overlap.hpp"
 
 namespace tumble::engine {
 namespace {
@@ -34,10 +36,10 @@ std::string plural(std::size_t count, const std::string& noun) {
   throw InputError(source + ": " + problem);
 }
 
-[[noreturn]] void fail_zero_volume(const std::string& source) {
-  fail(source,
-       "encloses zero volume (a flat or collapsed surface); for a thin sheet use "
-       "--shell THICKNESS");
+/// `why`, when known, says what collapsed (a surface cancelling its mirror image).
+[[noreturn]] void fail_zero_volume(const std::string& source, const std::string& why = "") {
+  fail(source, "encloses zero volume (" + (why.empty() ? "a flat or collapsed surface" : why) +
+                   "); for a thin sheet use --shell THICKNESS");
 }
 
 void check_options(const MassOptions& options, const std::string& source) {
@@ -54,24 +56,11 @@ void check_options(const MassOptions& options, const std::string& source) {
   positive("scale", options.scale);
 }
 
-/// Solid angle of triangle (a, b, c) seen from the origin (Van Oosterom and Strackee, IEEE
-/// Trans. Biomed. Eng. 30 (1983)): tan(omega/2) = a.(b x c) / (|a||b||c| + (a.b)|c| + ...).
-double solid_angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-  const double la = a.norm(), lb = b.norm(), lc = c.norm();
-  const double numerator = a.dot(b.cross(c));
-  const double denominator = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
-  return 2.0 * std::atan2(numerator, denominator);
-}
-
-/// Per-part signed volumes, bounding boxes and a sample vertex, in one pass.
+/// Per-part signed volumes, in one pass.
 struct PartSummary {
   double signed_volume = 0.0;    // times 6
   double absolute_volume = 0.0;  // sum of |det|, the scale of rounding in signed_volume
-  Eigen::Vector3d low = Eigen::Vector3d::Constant(INFINITY);
-  Eigen::Vector3d high = Eigen::Vector3d::Constant(-INFINITY);
-  std::uint32_t sample_vertex = 0;
   bool reversed = false;
-  bool cavity = false;
 };
 
 std::vector<PartSummary> summarize_parts(const TriangleMesh& mesh, const Topology& topology,
@@ -86,47 +75,18 @@ std::vector<PartSummary> summarize_parts(const TriangleMesh& mesh, const Topolog
     const double det = a.dot(b.cross(c));
     part.signed_volume += det;
     part.absolute_volume += std::abs(det);
-    if (parts.size() > 1) {
-      part.sample_vertex = t[0];
-      for (const std::uint32_t v : t) {
-        part.low = part.low.cwiseMin(mesh.positions[v]);
-        part.high = part.high.cwiseMax(mesh.positions[v]);
-      }
-    }
   }
   return parts;
 }
 
-/// Winding number of one part around `point`: +1 inside an outward-wound part, -1 inside an
-/// inward-wound one, 0 outside; negated when `reversed` (the part is to be flipped).
-double part_winding_number(const TriangleMesh& mesh, const Topology& topology, std::uint32_t part,
-                           bool reversed, const Eigen::Vector3d& point) {
-  double total = 0.0;
-  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
-    if (topology.triangle_part[i] != part) continue;
-    const auto& t = mesh.triangles[i];
-    total += solid_angle(mesh.positions[t[0]] - point, mesh.positions[t[1]] - point,
-                         mesh.positions[t[2]] - point);
-  }
-  const double winding = total / (4.0 * std::numbers::pi);
-  return reversed ? -winding : winding;
-}
-
-bool box_contains(const PartSummary& part, const Eigen::Vector3d& point) {
-  return (point.array() >= part.low.array()).all() && (point.array() <= part.high.array()).all();
-}
-
-/// How many layers of matter the other parts put around part `self`'s sample vertex: the sum
-/// of their winding numbers (an outer shell +1, a cavity -1). Parts whose bounding box misses
-/// the point contribute exactly 0 and are skipped.
-double matter_around(const std::vector<PartSummary>& parts, std::uint32_t self,
-                     const TriangleMesh& mesh, const Topology& topology) {
-  const Eigen::Vector3d& point = mesh.positions[parts[self].sample_vertex];
-  double layers = 0.0;
-  for (std::uint32_t other = 0; other < parts.size(); ++other) {
-    if (other == self || !box_contains(parts[other], point)) continue;
-    // The triangles' own winding gives the sign; a part marked for flipping counts reversed.
-    layers += part_winding_number(mesh, topology, other, parts[other].reversed, point);
+/// How many layers of matter the other parts put around part `self`: the sum of the exact
+/// winding numbers of the parts it lies in (an outer shell +1, a cavity -1), each negated when
+/// that part is marked for flipping.
+int matter_around(const std::vector<PartSummary>& parts, std::uint32_t self,
+                  const std::vector<detail::PartNesting>& nesting) {
+  int layers = 0;
+  for (const detail::PartNesting& n : nesting) {
+    if (n.inner == self) layers += parts[n.outer].reversed ? -n.winding : n.winding;
   }
   return layers;
 }
@@ -134,9 +94,10 @@ double matter_around(const std::vector<PartSummary>& parts, std::uint32_t self,
 /// Decides which parts to reverse and which are cavities. A negative total means the whole
 /// file is inside out (a common export error): everything is reversed first. Then an
 /// inward-facing part inside matter is a cavity, one inside nothing is flipped with a warning,
-/// and an outward-facing part inside matter overlaps it (counted twice: warned).
-void orient_parts(std::vector<PartSummary>& parts, double signed_total, const TriangleMesh& mesh,
-                  const Topology& topology, MeshReport& report) {
+/// and an outward-facing part inside matter overlaps it (counted twice: noted for the policy).
+void orient_parts(std::vector<PartSummary>& parts, double signed_total,
+                  const std::vector<detail::PartNesting>& nesting, detail::OverlapPolicy& policy,
+                  MeshReport& report) {
   if (signed_total < 0.0) {
     for (PartSummary& part : parts) part.reversed = true;
     report.flipped = true;
@@ -152,7 +113,7 @@ void orient_parts(std::vector<PartSummary>& parts, double signed_total, const Tr
   // Inward-facing parts first: cavities stay, lone ones are flipped.
   for (std::uint32_t i = 0; i < count; ++i) {
     if (!inward(i)) continue;
-    if (matter_around(parts, i, mesh, topology) > 0.5) {
+    if (matter_around(parts, i, nesting) > 0) {
       ++report.cavities;
     } else {
       parts[i].reversed = !parts[i].reversed;
@@ -162,11 +123,8 @@ void orient_parts(std::vector<PartSummary>& parts, double signed_total, const Tr
   }
   // Then outward-facing parts that sit in matter.
   for (std::uint32_t i = 0; i < count; ++i) {
-    if (inward(i) || matter_around(parts, i, mesh, topology) < 0.5) continue;
-    report.warnings.push_back("part " + std::to_string(i + 1) + of +
-                              " lies inside another part with the same orientation, so their "
-                              "shared volume counts twice (reverse its winding if it is meant "
-                              "as a cavity)");
+    if (inward(i) || matter_around(parts, i, nesting) <= 0) continue;
+    policy.nested(i, std::abs(parts[i].signed_volume) / 6.0);
   }
 }
 
@@ -290,9 +248,12 @@ void require_closed_and_consistent(const Topology& topology, const std::string& 
 /// One part: its orientation is the sign of the volume; flipping every face negates all three
 /// integrals, so no second pass is needed.
 MomentIntegrals single_part_integrals(const TriangleMesh& mesh, const Eigen::Vector3d& reference,
-                                      TopologyPass& pass, MeshReport& report) {
+                                      TopologyPass& pass, const std::string& cancelled,
+                                      MeshReport& report) {
   MomentIntegrals solid = pass.concurrent ? pass.solid : solid_integrals(mesh, reference);
-  if (!(std::abs(solid.measure) > 1e-9 * solid.absolute_measure)) fail_zero_volume(report.source);
+  if (!(std::abs(solid.measure) > 1e-9 * solid.absolute_measure)) {
+    fail_zero_volume(report.source, cancelled);
+  }
   if (solid.measure < 0.0) {
     solid.measure = -solid.measure;
     solid.first = -solid.first;
@@ -306,7 +267,9 @@ MomentIntegrals single_part_integrals(const TriangleMesh& mesh, const Eigen::Vec
 /// Several parts: each oriented (cavities, lone inward parts flipped), then integrated again
 /// when some part was flipped or the integrals were not summed yet.
 MomentIntegrals multi_part_integrals(TriangleMesh& mesh, const Eigen::Vector3d& reference,
-                                     const TopologyPass& pass, MeshReport& report) {
+                                     const TopologyPass& pass,
+                                     const std::vector<detail::PartNesting>& nesting,
+                                     detail::OverlapPolicy& policy, MeshReport& report) {
   std::vector<PartSummary> parts = summarize_parts(mesh, pass.topology, reference);
   double signed_total = 0.0, absolute_total = 0.0;
   for (const PartSummary& part : parts) {
@@ -314,8 +277,11 @@ MomentIntegrals multi_part_integrals(TriangleMesh& mesh, const Eigen::Vector3d& 
     absolute_total += part.absolute_volume;
   }
   // Zero volume relative to the rounding scale of the signed sum (scale-free).
-  if (!(std::abs(signed_total) > 1e-9 * absolute_total)) fail_zero_volume(report.source);
-  orient_parts(parts, signed_total, mesh, pass.topology, report);
+  if (!(std::abs(signed_total) > 1e-9 * absolute_total)) {
+    fail_zero_volume(report.source, policy.cancelled());
+  }
+  orient_parts(parts, signed_total, nesting, policy, report);
+  policy.settle(report);
   const bool any_reversed =
       std::any_of(parts.begin(), parts.end(), [](const PartSummary& p) { return p.reversed; });
   if (any_reversed) flip_reversed_parts(mesh, pass.topology, parts);
@@ -326,9 +292,17 @@ MomentIntegrals multi_part_integrals(TriangleMesh& mesh, const Eigen::Vector3d& 
 void solid_properties(TriangleMesh& mesh, const Eigen::Vector3d& reference,
                       const MassOptions& options, TopologyPass& pass, MeshReport& report) {
   require_closed_and_consistent(pass.topology, report.source);
-  const MomentIntegrals integrals = pass.topology.parts == 1
-                                        ? single_part_integrals(mesh, reference, pass, report)
-                                        : multi_part_integrals(mesh, reference, pass, report);
+  // Exact tests for parts that cross, nest, repeat or intersect themselves: an error unless
+  // allowed (overlap_policy.hpp).
+  const detail::PartOverlaps overlaps =
+      detail::find_part_overlaps(mesh, pass.topology.triangle_part, pass.topology.parts);
+  detail::OverlapPolicy policy(options.allow_overlap, report.source, pass.topology.parts);
+  policy.findings(overlaps);
+  policy.settle(report);
+  const MomentIntegrals integrals =
+      pass.topology.parts == 1
+          ? single_part_integrals(mesh, reference, pass, policy.cancelled(), report)
+          : multi_part_integrals(mesh, reference, pass, overlaps.nesting, policy, report);
   report.volume = integrals.measure;
   if (!(report.volume > 0.0)) {
     fail(report.source, "encloses a non-positive volume (" + format_number(report.volume) +

@@ -344,10 +344,16 @@ TEST(MeshChecks, LoneInsideOutPartIsFlippedWithAWarning) {
   expect_inertia_near(big.mass_properties.inertia, expected.mass_properties.inertia);
 }
 
-TEST(MeshChecks, NestedPartWithTheSameOrientationIsCountedTwiceWithAWarning) {
+TEST(MeshChecks, NestedPartWithTheSameOrientationIsAnErrorOrWithAllowOverlapAWarning) {
   const Eigen::Vector3d outer(4.0, 3.0, 2.0), inner(2.0, 1.0, 1.0);
-  const MeshReport report = analyze_mesh(joined(box(outer, {0, 0, 0}), box(inner, {0, 0, 0})),
-                                         with_density(1.0), "nested.stl");
+  const TriangleMesh mesh = joined(box(outer, {0, 0, 0}), box(inner, {0, 0, 0}));
+  EXPECT_THAT(error_of(mesh, with_density(1.0), "nested.stl"),
+              AllOf(StartsWith("nested.stl: part 2 of 2 lies inside another part with the same "
+                               "orientation, so its volume (2 m^3) would count twice"),
+                    HasSubstr("give --allow-overlap to accept it")));
+  MassOptions options = with_density(1.0);
+  options.allow_overlap = true;
+  const MeshReport report = analyze_mesh(mesh, options, "nested.stl");
   EXPECT_EQ(report.cavities, 0u);
   EXPECT_THAT(
       report.warnings,

@@ -33,6 +33,9 @@ CLI::App& add_inspect_command(CLI::App& cli, InspectOptions& options) {
   inspect.add_option_function<double>(
       "--shell", [&](double value) { options.mass.shell_thickness = value; },
       "Thin-shell mode: THICKNESS in metres; area-weighted, for sheets and open surfaces");
+  inspect.add_flag("--allow-overlap", options.mass.allow_overlap,
+                   "Accept parts that overlap, intersect themselves or repeat (their shared "
+                   "volume counts twice; a warning says how much); by default an error");
   inspect.add_flag("--json", options.json, "Print JSON (an array when several files are given)");
   return inspect;
 }

@@ -181,6 +181,10 @@ void parse_body_matter(const Field& field, BodyDescription& body) {
     if (!mesh) scale->fail("\"scale\" applies to a mesh only (mesh units to metres)");
     body.scale = scale->positive();
   }
+  if (auto allow = field.find("allow_overlap")) {
+    if (!mesh) allow->fail("\"allow_overlap\" applies to a mesh only");
+    body.allow_overlap = allow->boolean();
+  }
 }
 
 void parse_initial_state(const Field& field, BodyDescription& body) {
@@ -214,9 +218,9 @@ void parse_loads(const Field& field, BodyDescription& body) {
 
 BodyDescription parse_body(const Field& field, std::size_t index,
                            const std::filesystem::path& folder) {
-  field.expect_object({"name", "mesh", "shape", "inertia", "mass", "density", "scale", "position",
-                       "orientation", "velocity", "angular_velocity", "angular_velocity_frame",
-                       "pivot", "torque", "torque_frame", "spring"});
+  field.expect_object({"name", "mesh", "shape", "inertia", "mass", "density", "scale",
+                       "allow_overlap", "position", "orientation", "velocity", "angular_velocity",
+                       "angular_velocity_frame", "pivot", "torque", "torque_frame", "spring"});
   BodyDescription body;
   parse_body_name(field, index, body);
   parse_body_shape(field, folder, body);

@@ -42,6 +42,7 @@ engine::MeshReport import_body_mesh(const BodyDescription& body, const std::stri
   options.mass = body.mass;
   options.density = body.density;
   options.scale = body.scale;
+  options.allow_overlap = body.allow_overlap;
   engine::MeshReport report;
   try {
     report = inspect_file(*body.mesh, options, shape);

@@ -20,6 +20,9 @@ struct MassOptions {
   std::optional<double> mass;             ///< kg, total; excludes `density`
   double scale = 1.0;                     ///< file units to metres (0.001 for millimetres)
   std::optional<double> shell_thickness;  ///< m; thin-shell (area-weighted) mode when set
+  /// Accept parts that overlap, intersect themselves or repeat (their shared volume then
+  /// counts twice, and a warning says how much); by default they are an error.
+  bool allow_overlap = false;
 };
 
 /// Everything `tumble inspect` reports about one mesh, in SI units after scaling.

@@ -22,10 +22,10 @@ using tumble::testing::fresh_directory;
 using tumble::testing::run_command;
 using tumble::testing::tumble_executable;
 
-/// Writes an ASCII STL of an axis-aligned box with the given size and centre; `skip_faces`
+/// An ASCII STL solid of an axis-aligned box with the given size and centre; `skip_faces`
 /// leaves out the last triangles (to make it open).
-void write_box_stl(const std::filesystem::path& file, double sx, double sy, double sz,
-                   double cx = 0, double cy = 0, double cz = 0, int skip_faces = 0) {
+std::string box_solid(double sx, double sy, double sz, double cx = 0, double cy = 0, double cz = 0,
+                      int skip_faces = 0) {
   const double x[2] = {cx - sx / 2, cx + sx / 2}, y[2] = {cy - sy / 2, cy + sy / 2},
                z[2] = {cz - sz / 2, cz + sz / 2};
   const auto corner = [&](int i) {
@@ -41,7 +41,12 @@ void write_box_stl(const std::filesystem::path& file, double sx, double sy, doub
     return testing::StlTriangle{Eigen::Vector3d::Zero(), corner(q[0]), corner(q[second]),
                                 corner(q[second + 1])};
   };
-  testing::write_stl_file(file, testing::ascii_stl_solid("box", 12 - skip_faces, triangle));
+  return testing::ascii_stl_solid("box", 12 - skip_faces, triangle);
+}
+
+void write_box_stl(const std::filesystem::path& file, double sx, double sy, double sz,
+                   double cx = 0, double cy = 0, double cz = 0, int skip_faces = 0) {
+  testing::write_stl_file(file, box_solid(sx, sy, sz, cx, cy, cz, skip_faces));
 }
 
 class InspectCommand : public ::testing::Test {
@@ -152,6 +157,36 @@ TEST_F(InspectCommand, OpenMeshFailsWithOneLineNamingTheFile) {
   EXPECT_THAT(result.err, HasSubstr("--shell"));
   EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
   EXPECT_TRUE(result.out.empty());
+}
+
+TEST_F(InspectCommand, OverlappingPartsFailUnlessAllowed) {
+  // Two unit cubes, the second moved by (0.5, 0.5, 0.5): they share 0.125 m^3.
+  testing::write_stl_file(path("two.stl"), box_solid(1, 1, 1) + box_solid(1, 1, 1, 0.5, 0.5, 0.5));
+  const auto refused = run_command(tumble_executable() + " inspect " + path("two.stl"));
+  EXPECT_EQ(refused.status, 1);
+  EXPECT_EQ(refused.err, "tumble inspect: error: " + path("two.stl") +
+                             ": parts 1 and 2 of 2 overlap (their surfaces cross), so their "
+                             "shared volume (0.125 m^3) would count twice; give --allow-overlap "
+                             "to accept it (\"allow_overlap\": true in a scene)\n");
+  EXPECT_TRUE(refused.out.empty());
+
+  const auto allowed =
+      run_command(tumble_executable() + " inspect --allow-overlap --json " + path("two.stl"));
+  ASSERT_EQ(allowed.status, 0) << allowed.err;
+  const nlohmann::json report = nlohmann::json::parse(allowed.out);
+  EXPECT_NEAR(report.at("volume").get<double>(), 2.0, 1e-6);  // both cubes, as warned
+  EXPECT_THAT(report.at("warnings").dump(), HasSubstr("shared volume (0.125 m^3) counts twice"));
+  const auto human =
+      run_command(tumble_executable() + " inspect --allow-overlap " + path("two.stl"));
+  EXPECT_THAT(human.out, HasSubstr("note  parts 1 and 2 of 2 overlap"));
+}
+
+TEST_F(InspectCommand, PartsStackedFaceToFaceAreNoOverlap) {
+  testing::write_stl_file(path("stack.stl"),
+                          box_solid(1, 1, 1) + box_solid(0.5, 0.5, 0.5, 0, 0, 0.75));
+  const auto result = run_command(tumble_executable() + " inspect --json " + path("stack.stl"));
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_NEAR(nlohmann::json::parse(result.out).at("volume").get<double>(), 1.125, 1e-6);
 }
 
 TEST_F(InspectCommand, ShellModeAcceptsTheOpenMesh) {

@@ -7,6 +7,9 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
 #include <variant>
 
 #include <nlohmann/json.hpp>
@@ -271,8 +274,16 @@ TEST(SceneErrors, MassDensityAndScale) {
   mesh["bodies"][0]["scale"] = -1;
   EXPECT_THAT(error_of(mesh), HasSubstr("bodies[0].scale: expected a positive number, got -1"));
   mesh["bodies"][0].erase("scale");
+  mesh["bodies"][0]["allow_overlap"] = 1;
+  EXPECT_THAT(error_of(mesh), HasSubstr("bodies[0].allow_overlap: expected true or false, got 1"));
+  mesh["bodies"][0]["allow_overlap"] = true;
+  EXPECT_TRUE(parse_scene(mesh.dump(), kFile).bodies[0].allow_overlap);
+  mesh["bodies"][0].erase("allow_overlap");
+  EXPECT_FALSE(parse_scene(mesh.dump(), kFile).bodies[0].allow_overlap);
   mesh["bodies"][0].erase("mass");
   EXPECT_THAT(error_of(mesh), HasSubstr("bodies[0]: missing \"mass\" (kg) or \"density\""));
+  EXPECT_THAT(error_of(with_body("allow_overlap", true)),
+              HasSubstr("bodies[0].allow_overlap: \"allow_overlap\" applies to a mesh only"));
 }
 
 TEST(SceneErrors, HugeNumbersReadAsInfinityAreRefused) {
@@ -550,6 +561,35 @@ TEST_F(SceneCompile, MeshBodyUsesTheMeshMassProperties) {
   write_box_obj(dir_ / "meshes" / "box_mm.obj", {250, 500, 750}, {0, 0, 0});
   scene["bodies"][0] = {{"mesh", "../meshes/box_mm.obj"}, {"density", 500}, {"scale", 0.001}};
   EXPECT_NEAR(compile(scene).bodies[0].mass, 500 * 0.09375, 1e-9);
+}
+
+TEST_F(SceneCompile, OverlappingPartsOfAMeshNeedAllowOverlap) {
+  // Two boxes in one file, the second moved half a box along each axis: they share an eighth.
+  const auto file = dir_ / "meshes" / "two.obj";
+  write_box_obj(file, {1, 1, 1}, {0, 0, 0});
+  std::ifstream in(file);
+  const std::string first((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  write_box_obj(dir_ / "meshes" / "moved.obj", {1, 1, 1}, {0.5, 0.5, 0.5});
+  std::ifstream moved_in(dir_ / "meshes" / "moved.obj");
+  std::string second;
+  for (std::string line; std::getline(moved_in, line);) {
+    if (line[0] == 'f') {
+      std::istringstream face(line.substr(2));
+      int a = 0, b = 0, c = 0;
+      face >> a >> b >> c;
+      line =
+          "f " + std::to_string(a + 8) + " " + std::to_string(b + 8) + " " + std::to_string(c + 8);
+    }
+    second += line + "\n";
+  }
+  std::ofstream(file) << first << second;
+  json scene = base_scene();
+  scene["bodies"][0] = {{"mesh", "../meshes/two.obj"}, {"density", 1.0}};
+  EXPECT_THAT(testing::input_error_of([&] { compile(scene); }),
+              AllOf(HasSubstr("scenes/scene.json: bodies[0].mesh: "),
+                    HasSubstr("parts 1 and 2 of 2 overlap (their surfaces cross)")));
+  scene["bodies"][0]["allow_overlap"] = true;
+  EXPECT_NEAR(compile(scene).bodies[0].mass, 2.0, 1e-9);  // both boxes, as warned
 }
 
 TEST_F(SceneCompile, MeshErrorsArePrefixedWithTheJsonPath) {

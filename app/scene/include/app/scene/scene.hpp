@@ -45,14 +45,15 @@ struct SpringDescription {
 /// `density`, with an inertia `mass`.
 struct BodyDescription {
   std::string name;
-  std::optional<std::filesystem::path> mesh;           ///< resolved against the scene's folder
-  std::optional<engine::Shape> shape;                  ///< a primitive solid, validated
-  std::optional<Eigen::Vector3d> principal_moments;    ///< kg m^2, about the centre of mass
-  std::optional<Eigen::Matrix3d> inertia_tensor;       ///< kg m^2, about the centre of mass
-  std::optional<double> mass;                          ///< kg
-  std::optional<double> density;                       ///< kg/m^3 (mesh or shape only)
-  double scale = 1.0;                                  ///< mesh units to metres (mesh only)
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< centre of mass, world, m
+  std::optional<std::filesystem::path> mesh;         ///< resolved against the scene's folder
+  std::optional<engine::Shape> shape;                ///< a primitive solid, validated
+  std::optional<Eigen::Vector3d> principal_moments;  ///< kg m^2, about the centre of mass
+  std::optional<Eigen::Matrix3d> inertia_tensor;     ///< kg m^2, about the centre of mass
+  std::optional<double> mass;                        ///< kg
+  std::optional<double> density;                     ///< kg/m^3 (mesh or shape only)
+  double scale = 1.0;                                ///< mesh units to metres (mesh only)
+  bool allow_overlap = false;  ///< accept overlapping parts of the mesh (MassOptions)
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();               ///< centre of mass, world, m
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  ///< body to world, unit
   std::optional<Eigen::Vector3d> velocity;  ///< of the centre of mass (free bodies)
   Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  ///< rad/s
@@ -87,6 +88,7 @@ struct SceneDescription {
 /// "shape" (a primitive solid, app/scene/shape_field.hpp) and "inertia" ({"principal":
 /// [I1, I2, I3]} or {"tensor": [[..], [..], [..]]}); with a mesh or a shape exactly one of
 /// "mass" and "density", with an inertia "mass"; "scale" (mesh only, positive);
+/// "allow_overlap" (mesh only, boolean: accept overlapping parts, engine::MassOptions);
 /// "position", "orientation" ([w, x, y, z], any non-zero quaternion, normalised),
 /// "velocity" (not with "pivot"), "angular_velocity", "angular_velocity_frame" ("world" by
 /// default or "body"), "pivot", "torque", "torque_frame", "spring" ({"anchor", "attach",
