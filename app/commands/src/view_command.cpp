@@ -44,6 +44,9 @@ CLI::App& add_view_command(CLI::App& cli, ViewOptions& options) {
           "Simulated seconds per real second (default 1)")
       ->type_name("S");
   view.add_flag("--paused", options.paused, "Start paused");
+  view.add_flag("--allow-overlap", options.allow_overlap,
+                "A mesh opened on its own may have overlapping parts (their shared volume "
+                "counts twice), as with tumble inspect --allow-overlap");
   view.add_option_function<double>(
           "--exit-after", [&](double value) { options.exit_after = value; },
           "Quit after S seconds of wall time")

@@ -61,7 +61,7 @@ std::vector<TrailSettings> default_trails(const CompiledScene& compiled) {
 
 }  // namespace
 
-SceneDescription mesh_scene(const std::filesystem::path& mesh) {
+SceneDescription mesh_scene(const std::filesystem::path& mesh, bool allow_overlap) {
   SceneDescription scene;
   scene.file = mesh;
   scene.name = mesh.filename().string();
@@ -72,6 +72,7 @@ SceneDescription mesh_scene(const std::filesystem::path& mesh) {
   body.name = mesh.stem().string().empty() ? "body" : mesh.stem().string();
   body.mesh = mesh;
   body.density = 1000.0;
+  body.allow_overlap = allow_overlap;
   scene.bodies.push_back(body);
   return scene;
 }
@@ -97,7 +98,7 @@ std::optional<std::string> Session::open(const std::filesystem::path& file,
     const bool is_scene = extension == ".json";
     if (!is_scene && !std::filesystem::exists(file)) return file.string() + ": no such file";
     // A mesh opened on its own spins about its intermediate axis, ready to flip.
-    SceneDescription scene = is_scene ? load_scene(file) : mesh_scene(file);
+    SceneDescription scene = is_scene ? load_scene(file) : mesh_scene(file, choice.allow_overlap);
     if (choice.integrator) override_integrator(scene, *choice.integrator);
     if (choice.dt) {
       scene.dt = positive_option(*choice.dt, "--dt");

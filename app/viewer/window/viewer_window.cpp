@@ -239,7 +239,7 @@ ViewerWindow::ViewerWindow(const ViewOptions& options, SdlWindow& window, Window
   const std::optional<std::filesystem::path> file =
       options.file ? options.file : default_view_scene();
   if (file) {
-    viewer_.open(*file, {options.integrator, options.dt});
+    viewer_.open(*file, {options.integrator, options.dt, options.allow_overlap});
   } else {
     viewer_.notify("no scene given and the demo was not found: open a file", true);
   }

@@ -17,6 +17,7 @@ struct ViewOptions {
   std::filesystem::path output_dir = ".";       ///< screenshots and recordings
   std::optional<std::string> integrator;
   std::optional<double> dt;
+  bool allow_overlap = false;  ///< a mesh opened on its own may have overlapping parts
   std::optional<double> time_scale;
   bool paused = false;
   std::optional<double> exit_after;  ///< seconds of wall time, then quit

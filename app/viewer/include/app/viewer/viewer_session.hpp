@@ -41,7 +41,7 @@ inline constexpr std::size_t kMaxRuns = 4;
 
 /// A scene for a mesh opened on its own: one body of density 1000 kg/m^3 at the origin (spun
 /// about its intermediate axis after compiling, see Session::open), rk4 at dt = 1 ms for 60 s.
-SceneDescription mesh_scene(const std::filesystem::path& mesh);
+SceneDescription mesh_scene(const std::filesystem::path& mesh, bool allow_overlap = false);
 
 /// The draw-list colour and the legend's name of run `index` beside the first.
 struct RunColour {
@@ -62,6 +62,7 @@ struct History {
 struct RunChoice {
   std::optional<std::string> integrator;
   std::optional<double> dt;
+  bool allow_overlap = false;  ///< for a mesh opened on its own (engine::MassOptions)
 };
 
 class Session {
