@@ -50,6 +50,10 @@ namespace {
 
 enum Tag : std::uint8_t { kMesh = 1, kInputError = 2, kOutOfMemory = 3, kFailure = 4 };
 
+/// The child's exit status when it cannot write its answer (no memory left for the file, or a
+/// file size limit).
+constexpr int kCannotAnswer = 3;
+
 constexpr std::uint64_t kMiB = std::uint64_t{1} << 20;
 constexpr std::uint64_t kGiB = std::uint64_t{1} << 30;
 
@@ -62,7 +66,7 @@ struct PipeWriter {
     while (size > 0) {
       const ssize_t n = ::write(fd, p, size);
       if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) ::_exit(3);
+      if (n <= 0) ::_exit(kCannotAnswer);
       p += n;
       size -= static_cast<std::size_t>(n);
     }
@@ -158,10 +162,11 @@ void set_child_limits(const ImportLimits& limits) {
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);
   if (::getppid() != parent) ::_exit(4);  // the parent died before the line above
   // Ctrl+C reaches the whole process group: the child then simply ends, and the parent,
-  // which saw the signal too, reports the interruption.
-  // A crash ends the child by its signal, which the parent names. Handlers inherited from the
-  // parent (a sanitizer's, a fuzzer's) would report a fault of assimp's as tumble's own, at
-  // length, and save crash inputs from inside the child.
+  // which saw the signal too, reports the interruption. A crash ends the child by its signal,
+  // which the parent names: handlers inherited from the parent (a sanitizer's, a fuzzer's)
+  // would report a fault of assimp's as tumble's own, at length, and save crash inputs from
+  // inside the child. SIGXFSZ is the parent's choice (ignored: a write past a file size limit
+  // fails), kept.
   for (const int signal : {SIGINT, SIGTERM, SIGPIPE, SIGXCPU, SIGSEGV, SIGBUS, SIGFPE, SIGILL}) {
     std::signal(signal, SIG_DFL);
   }
@@ -200,12 +205,18 @@ std::string format_bytes(std::uint64_t bytes) {
 }
 
 /// Why a child that sent no complete answer ended, as the end of a sentence.
-std::string describe_end(int status, bool timed_out, const ImportLimits& limits, const char* what) {
+/// `cpu_seconds` is the CPU time the child used: a SIGKILL past the limit is the limit's (the
+/// hard limit), one before it someone else's (the kernel's out-of-memory killer, a user).
+std::string describe_end(int status, bool timed_out, double cpu_seconds, const ImportLimits& limits,
+                         const char* what) {
   const std::string reader = what;
   if (timed_out) return reader + " did not finish reading it in time (it may loop on this file)";
+  if (WIFEXITED(status) && WEXITSTATUS(status) == kCannotAnswer) {
+    return "the mesh " + reader + " read could not be passed back (no memory or file space left)";
+  }
   if (WIFSIGNALED(status)) {
     const int signal = WTERMSIG(status);
-    if (signal == SIGXCPU || signal == SIGKILL) {
+    if (signal == SIGXCPU || (signal == SIGKILL && cpu_seconds >= limits.cpu_seconds)) {
       return reader + " used more than " + format_seconds(limits.cpu_seconds) +
              " of CPU time reading it (it may loop on this file)";
     }
@@ -214,6 +225,11 @@ std::string describe_end(int status, bool timed_out, const ImportLimits& limits,
                                                             : "signal " + std::to_string(signal);
     if (signal == SIGINT || signal == SIGTERM)
       return "reading it was interrupted (" + signal_name + ")";
+    if (signal == SIGKILL) {
+      return reader +
+             " was killed (SIGKILL) reading it, perhaps by the kernel for want of "
+             "memory";
+    }
     const char* description = sigdescr_np(signal);
     return reader + " crashed reading it (" + signal_name + ", " +
            (description != nullptr ? description : "unknown signal") +
@@ -251,8 +267,12 @@ TriangleMesh receive(const std::filesystem::path& file, const ImportLimits& limi
   const bool timed_out = !wait_for_end(pipe, 2.0 * limits.cpu_seconds + 10.0);
   if (timed_out) ::kill(child, SIGKILL);
   int status = 0;
-  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  rusage usage{};
+  while (::wait4(child, &status, 0, &usage) < 0 && errno == EINTR) {
   }
+  const double cpu_seconds =
+      static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+      1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
   ::close(pipe);
   ::lseek(message, 0, SEEK_SET);
   MessageReader in{message};
@@ -279,7 +299,8 @@ TriangleMesh receive(const std::filesystem::path& file, const ImportLimits& limi
   ::close(message);
 
   const std::string name = file.string();
-  if (in.short_read) throw InputError(name + ": " + describe_end(status, timed_out, limits, what));
+  if (in.short_read)
+    throw InputError(name + ": " + describe_end(status, timed_out, cpu_seconds, limits, what));
   if (tag == kMesh) return mesh;
   if (tag == kInputError) throw InputError(text);
   if (tag == kOutOfMemory) {

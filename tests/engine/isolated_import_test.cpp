@@ -5,6 +5,7 @@
 // or leaks (found by fuzzing, kept in tests/fuzz/corpus/mesh_import/) are refused by import_mesh.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <csignal>
@@ -141,6 +142,38 @@ TEST(IsolatedImport, AChildThatExitsWithoutAnAnswerIsARefusal) {
                  [](ImportStats&) -> TriangleMesh { ::_exit(9); });
   });
   EXPECT_EQ(message, "model.obj: assimp ended without an answer (exit status 9)");
+}
+
+TEST(IsolatedImport, AKillBeforeTheCpuLimitIsNotCalledALoop) {
+  // As the kernel's out-of-memory killer would end it, with almost no CPU time used.
+  ImportStats stats;
+  const std::string message = input_error_of([&] {
+    run_isolated(kFile, short_limits(), "assimp", stats, [](ImportStats&) -> TriangleMesh {
+      std::raise(SIGKILL);
+      return {};
+    });
+  });
+  EXPECT_EQ(message,
+            "model.obj: assimp was killed (SIGKILL) reading it, perhaps by the kernel for want "
+            "of memory");
+}
+
+TEST(IsolatedImport, AnAnswerThatCannotBeWrittenIsNamedSo) {
+  // A file size limit (as `prlimit --fsize` sets) stops the write of the mesh to the memory file.
+  ImportStats stats;
+  const std::string message = input_error_of([&] {
+    run_isolated(kFile, short_limits(), "assimp", stats, [](ImportStats&) {
+      std::signal(SIGXFSZ, SIG_IGN);
+      const rlimit small{4096, 4096};
+      ::setrlimit(RLIMIT_FSIZE, &small);
+      TriangleMesh mesh;
+      mesh.positions.assign(10000, Eigen::Vector3d::Ones());
+      return mesh;
+    });
+  });
+  EXPECT_EQ(message,
+            "model.obj: the mesh assimp read could not be passed back (no memory or file space "
+            "left)");
 }
 
 TEST(IsolatedImport, DefaultLimitsGrowWithTheFile) {
