@@ -81,10 +81,10 @@ void clear_inapplicable(InvariantChanges& ch) {
   }
 }
 
-/// Steps `simulation` to its end or its blow-up, keeping the signed extremes of the invariants
-/// in `run.changes` and timing the loop.
+/// Steps `simulation` to its end or its blow-up (or until `stop` says so: run.stopped), keeping
+/// the signed extremes of the invariants in `run.changes` and timing the loop.
 void step_watching_invariants(const StabilityCase& c, engine::Simulation& simulation,
-                              StabilityRun& run) {
+                              StabilityRun& run, const std::function<bool()>& stop) {
   // The invariants that apply, their start values and scales.
   InvariantChanges& ch = run.changes;
   for (const engine::BodyModel& body : c.bodies) {
@@ -102,6 +102,10 @@ void step_watching_invariants(const StabilityCase& c, engine::Simulation& simula
   // Step, keeping the signed extremes.
   const auto begin = std::chrono::steady_clock::now();
   while (simulation.step()) {
+    if (stop && simulation.steps() % kStopCheckSteps == 0 && stop()) {
+      run.stopped = true;
+      break;
+    }
     const engine::Invariants now = invariants(simulation);
     keep_extremes(ch, (now.energy - start.energy) / energy_scale,
                   (now.momentum - start.momentum) / momentum_scale,
@@ -145,7 +149,8 @@ StabilityReference stability_reference(const StabilityCase& c) {
 }
 
 StabilityRun run_stability_case(const StabilityCase& c, const engine::IntegratorInfo& info,
-                                double dt, const StabilityReference& reference) {
+                                double dt, const StabilityReference& reference,
+                                const std::function<bool()>& stop) {
   StabilityRun run = planned_run(c, info, dt, reference);
   if (!case_runs(c, info.name)) {
     run.note = c.skip_note;
@@ -160,7 +165,8 @@ StabilityRun run_stability_case(const StabilityCase& c, const engine::Integrator
   }
   engine::Simulation& simulation = *built;
   run.total_steps = simulation.total_steps();
-  step_watching_invariants(c, simulation, run);
+  step_watching_invariants(c, simulation, run, stop);
+  if (run.stopped) return run;
   measure_end(simulation, reference, run);
   run.outcome = classify(simulation.blow_up().has_value(), run.changes, kStabilityDriftThreshold);
   return run;

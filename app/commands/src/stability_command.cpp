@@ -115,7 +115,10 @@ std::vector<StabilityRun> run_sweep(const std::vector<StabilityCase>& cases,
     for (const engine::IntegratorInfo& info : integrators) {
       for (const double dt : c.dts) {
         if (guard.interrupted()) return runs;
-        runs.push_back(run_stability_case(c, info, dt, reference));
+        StabilityRun run =
+            run_stability_case(c, info, dt, reference, [&guard] { return guard.interrupted(); });
+        if (run.stopped) return runs;  // within the run: it is left out, as are the rest
+        runs.push_back(std::move(run));
       }
     }
   }

@@ -205,6 +205,22 @@ TEST_F(SafeIo, InterruptedStabilityLeavesNothingAndExitsWith130) {
   EXPECT_EQ(directory_entries(dir_), std::vector<std::string>{"scene.json"});
 }
 
+TEST_F(SafeIo, StabilityStopsWithinALongRun) {
+  // One run of rk4 at dt 1e-5 over 2000 s (2e8 steps, minutes) is under way when SIGTERM
+  // comes: it must stop there, not at its end. `timeout` (--foreground: the signal passed on
+  // once) turns a run that does not stop into status 137 long before that end.
+  const std::string scene = write_scene(spinning_scene(2000.0, 0.5));
+  const auto result =
+      interrupt("timeout --foreground -s KILL 60 " + tumble_executable() + " stability " + scene +
+                    " --integrators rk4 --dts 1e-5 -o " + path("out"),
+                "out", "TERM");
+  EXPECT_EQ(result.status, kExitInterrupted) << result.err;
+  EXPECT_THAT(result.err,
+              HasSubstr("tumble stability: interrupted by SIGTERM; nothing written to '" +
+                        path("out") + "'\n"));
+  EXPECT_EQ(directory_entries(dir_), std::vector<std::string>{"scene.json"});
+}
+
 TEST_F(SafeIo, AStaleTemporaryOfADeadProcessIsRemovedByTheNextRun) {
   const std::string scene = write_scene(spinning_scene(0.1, 0.01));
   // A process that has exited: its PID names no live process (until reused, which is unlikely

@@ -5,6 +5,7 @@
 /// then classified and measured at the end against the case's reference.
 
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -45,13 +46,20 @@ struct StabilityRun {
   std::string reference;                    ///< StabilityReference::kind
   double wall_seconds = 0.0;                ///< the stepping loop
   std::string note;                         ///< why a skipped run was not made
+  bool stopped = false;  ///< `stop` said so part-way: the run is incomplete, not to be reported
 };
 
 /// Runs case `c` under `info` at step `dt`. Skipped (with the reason in `note`) when the case
 /// names other integrators or the simulation cannot be built (the exact solution on a forced
 /// case); the errors at the end are measured only when the run did not blow up and `reference`
-/// has states.
+/// has states. `stop`, when given, is asked every kStopCheckSteps steps; when it says so the
+/// run ends there with `stopped` set.
 StabilityRun run_stability_case(const StabilityCase& c, const engine::IntegratorInfo& info,
-                                double dt, const StabilityReference& reference);
+                                double dt, const StabilityReference& reference,
+                                const std::function<bool()>& stop = {});
+
+/// Steps between two looks at `stop` in a stability run: often enough to stop within
+/// milliseconds, rare enough to cost nothing beside the invariants computed every step.
+inline constexpr std::size_t kStopCheckSteps = 1024;
 
 }  // namespace tumble::app
