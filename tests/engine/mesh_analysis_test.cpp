@@ -16,6 +16,7 @@
 #include "engine/primitive_meshes.hpp"
 #include "engine/rational_reference.hpp"
 #include "inertia_expectations.hpp"
+#include "mesh_fixtures.hpp"
 #include "support/input_error.hpp"
 
 namespace tumble::engine {
@@ -45,15 +46,8 @@ TriangleMesh box(const Eigen::Vector3d& size, const Eigen::Vector3d& centre) {
   return mesh;
 }
 
-TriangleMesh reversed(TriangleMesh mesh) {
-  for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
-  return mesh;
-}
-
-TriangleMesh joined(TriangleMesh a, const TriangleMesh& b) {
-  append_mesh(a, b);
-  return a;
-}
+using mesh_fixtures::joined;
+using mesh_fixtures::reversed;
 
 /// Box inertia about its centre, m (b^2 + c^2) / 12 etc.
 Eigen::Matrix3d box_inertia(double density, const Eigen::Vector3d& size) {

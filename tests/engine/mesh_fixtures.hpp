@@ -9,7 +9,11 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include "engine/primitive_meshes.hpp"
+#include "engine/triangle_mesh.hpp"
 
 namespace tumble::mesh_fixtures {
 
@@ -120,5 +124,17 @@ void write_fbx_ascii(const std::filesystem::path& file, const std::vector<FbxMod
 
 /// Standard base64 (RFC 4648) with padding.
 std::string base64(const std::string& bytes);
+
+/// `mesh` with every triangle's winding reversed (inside out).
+inline engine::TriangleMesh reversed(engine::TriangleMesh mesh) {
+  for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
+  return mesh;
+}
+
+/// `a` and `b` as one mesh (b's vertices and triangles appended, not welded).
+inline engine::TriangleMesh joined(engine::TriangleMesh a, const engine::TriangleMesh& b) {
+  engine::append_mesh(a, b);
+  return a;
+}
 
 }  // namespace tumble::mesh_fixtures

@@ -9,6 +9,7 @@
 #include "engine/input_error.hpp"
 #include "engine/mesh_analysis.hpp"
 #include "engine/primitive_meshes.hpp"
+#include "mesh_fixtures.hpp"
 #include "support/input_error.hpp"
 
 namespace tumble::engine {
@@ -29,15 +30,8 @@ TriangleMesh box(const Eigen::Vector3d& low, const Eigen::Vector3d& high) {
   return mesh;
 }
 
-TriangleMesh reversed(TriangleMesh mesh) {
-  for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
-  return mesh;
-}
-
-TriangleMesh joined(TriangleMesh a, const TriangleMesh& b) {
-  append_mesh(a, b);
-  return a;
-}
+using mesh_fixtures::joined;
+using mesh_fixtures::reversed;
 
 MassOptions allowing(double scale = 1.0) {
   MassOptions options;
