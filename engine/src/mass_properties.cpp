@@ -2,6 +2,7 @@
 #include "engine/mass_properties.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 #include "prefetch.hpp"
 
@@ -120,6 +121,20 @@ MassProperties MassProperties::rotated(const Eigen::Matrix3d& rotation) const {
 Eigen::Matrix3d MassProperties::inertia_about(const Eigen::Vector3d& point) const {
   const Eigen::Vector3d d = center_of_mass - point;
   return inertia + mass * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
+}
+
+MassProperties combined(const std::vector<MassProperties>& parts) {
+  if (parts.empty()) throw std::invalid_argument("combined: no parts");
+  MassProperties out;
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+  for (const MassProperties& part : parts) {
+    out.mass += part.mass;
+    moment += part.mass * part.center_of_mass;
+  }
+  if (!(out.mass > 0.0)) throw std::invalid_argument("combined: total mass not positive");
+  out.center_of_mass = moment / out.mass;
+  for (const MassProperties& part : parts) out.inertia += part.inertia_about(out.center_of_mass);
+  return out;
 }
 
 }  // namespace tumble::engine

@@ -53,7 +53,13 @@ void check_options(const MassOptions& options, const std::string& source) {
   if (options.density) positive("density", *options.density);
   if (options.mass) positive("mass", *options.mass);
   if (options.shell_thickness) positive("shell thickness", *options.shell_thickness);
-  positive("scale", options.scale);
+  for (int axis = 0; axis < 3; ++axis) {
+    const double factor = options.scale[axis];
+    if (!std::isfinite(factor) || factor == 0.0) {
+      fail(source, std::string("scale ") + "xyz"[axis] + " must be a finite non-zero number, got " +
+                       format_number(factor));
+    }
+  }
 }
 
 /// Per-part signed volumes, in one pass.
@@ -136,11 +142,16 @@ void flip_reversed_parts(TriangleMesh& mesh, const Topology& topology,
   }
 }
 
-/// Scales to metres and rejects non-finite coordinates (also those that overflow on scaling).
-void scale_positions(TriangleMesh& mesh, double scale, const std::string& source) {
+/// Scales to metres and rejects non-finite coordinates (also those that overflow on scaling). A
+/// mirroring scale (negative product) reverses every triangle, so outward stays outward.
+void scale_positions(TriangleMesh& mesh, const Eigen::Vector3d& scale, const std::string& source) {
+  const bool scaled = scale != Eigen::Vector3d::Ones();
+  if (scale.prod() < 0.0) {
+    for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
+  }
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
     Eigen::Vector3d& p = mesh.positions[i];
-    if (scale != 1.0) p *= scale;
+    if (scaled) p = p.cwiseProduct(scale);
     if (!p.allFinite()) {
       fail(source, "vertex " + std::to_string(i + 1) + " has a non-finite coordinate");
     }

@@ -393,7 +393,7 @@ TEST(Invariance, UniformScaleAtFixedDensity) {
   for (const double s : {1e-3, 0.5, 2.5, 40.0}) {
     MassOptions options;
     options.density = 700.0;
-    options.scale = s;
+    options.scale = Eigen::Vector3d::Constant(s);
     const MeshReport scaled = analyze_mesh(mesh, options, "scaled");
     const double s3 = s * s * s, s5 = s3 * s * s;
     EXPECT_NEAR(scaled.volume, s3 * base.volume, 1e-13 * s3 * base.volume) << s;

@@ -139,7 +139,7 @@ TEST(MeshChecks, NonFiniteCoordinateNamesTheVertex) {
   TriangleMesh huge = box_mesh({1.0, 1.0, 1.0});
   huge.positions[0].x() = 1e300;
   MassOptions options;
-  options.scale = 1e10;
+  options.scale = Eigen::Vector3d::Constant(1e10);
   EXPECT_THAT(error_of(huge, options), HasSubstr("vertex 1 has a non-finite coordinate"));
 }
 
@@ -167,12 +167,12 @@ TEST(MeshChecks, BadOptions) {
   EXPECT_THAT(error_of(mesh, nan_density), HasSubstr("density must be a positive finite number"));
 
   MassOptions zero_scale;
-  zero_scale.scale = 0.0;
-  EXPECT_THAT(error_of(mesh, zero_scale), HasSubstr("scale must be a positive finite number"));
+  zero_scale.scale = Eigen::Vector3d::Zero();
+  EXPECT_THAT(error_of(mesh, zero_scale), HasSubstr("scale x must be a finite non-zero number"));
 
-  MassOptions negative_scale;
-  negative_scale.scale = -1.0;
-  EXPECT_THAT(error_of(mesh, negative_scale), HasSubstr("scale must be a positive finite number"));
+  MassOptions nan_scale;
+  nan_scale.scale = Eigen::Vector3d(1.0, 1.0, std::numeric_limits<double>::quiet_NaN());
+  EXPECT_THAT(error_of(mesh, nan_scale), HasSubstr("scale z must be a finite non-zero number"));
 
   MassOptions both;
   both.density = 1000.0;

@@ -36,13 +36,13 @@ using mesh_fixtures::reversed;
 MassOptions allowing(double scale = 1.0) {
   MassOptions options;
   options.allow_overlap = true;
-  options.scale = scale;
+  options.scale = Eigen::Vector3d::Constant(scale);
   return options;
 }
 
 MassOptions strict(double scale = 1.0) {
   MassOptions options;
-  options.scale = scale;
+  options.scale = Eigen::Vector3d::Constant(scale);
   return options;
 }
 

@@ -28,8 +28,9 @@ CLI::App& add_inspect_command(CLI::App& cli, InspectOptions& options) {
           "--mass", [&](double value) { options.mass.mass = value; },
           "Total mass in kg (the density follows)")
       ->excludes(density);
-  inspect.add_option("--scale", options.mass.scale,
-                     "File units to metres, e.g. 0.001 for millimetres (default 1)");
+  inspect.add_option_function<double>(
+      "--scale", [&](double value) { options.mass.scale = Eigen::Vector3d::Constant(value); },
+      "File units to metres, e.g. 0.001 for millimetres (default 1)");
   inspect.add_option_function<double>(
       "--shell", [&](double value) { options.mass.shell_thickness = value; },
       "Thin-shell mode: THICKNESS in metres; area-weighted, for sheets and open surfaces");

@@ -41,7 +41,7 @@ engine::MeshReport import_body_mesh(const BodyDescription& body, const std::stri
   engine::MassOptions options;
   options.mass = body.mass;
   options.density = body.density;
-  options.scale = body.scale;
+  options.scale = Eigen::Vector3d::Constant(body.scale);
   options.allow_overlap = body.allow_overlap;
   engine::MeshReport report;
   try {

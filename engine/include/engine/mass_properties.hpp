@@ -7,6 +7,8 @@
 /// first moment V_tet (a'+b'+c')/4, second moment V_tet/20 (a'a'^T + b'b'^T + c'c'^T + s s^T).
 /// Accumulating about a point near the mesh (not the world origin) keeps far-away meshes exact.
 
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "engine/triangle_mesh.hpp"
@@ -45,6 +47,12 @@ struct MassProperties {
 /// filling the integrals, which were taken about `reference`.
 MassProperties mass_properties(const MomentIntegrals& integrals, const Eigen::Vector3d& reference,
                                double density);
+
+/// The mass properties of several bodies held together: masses add, the centre of mass is the
+/// mass-weighted mean, and each inertia is carried to it by the parallel-axis theorem. All
+/// must be in one frame. Throws std::invalid_argument when `parts` is empty or the total mass is
+/// not positive.
+MassProperties combined(const std::vector<MassProperties>& parts);
 
 /// Inertia tensor rho (tr(C) 1 - C) of a second moment C.
 Eigen::Matrix3d inertia_from_second_moment(const Eigen::Matrix3d& second_moment, double density);

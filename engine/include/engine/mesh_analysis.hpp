@@ -18,7 +18,10 @@ namespace tumble::engine {
 struct MassOptions {
   std::optional<double> density;          ///< kg/m^3; the default is 1000 (water)
   std::optional<double> mass;             ///< kg, total; excludes `density`
-  double scale = 1.0;                     ///< file units to metres (0.001 for millimetres)
+  /// File units to metres per axis (0.001 for millimetres), as URDF's <mesh scale="x y z">.
+  /// Each factor is finite and non-zero; a negative one mirrors along its axis, and when the
+  /// product is negative the winding is reversed so the faces still point outward.
+  Eigen::Vector3d scale = Eigen::Vector3d::Ones();
   std::optional<double> shell_thickness;  ///< m; thin-shell (area-weighted) mode when set
   /// Accept parts that overlap, intersect themselves or repeat (their shared volume then
   /// counts twice, and a warning says how much); by default they are an error.

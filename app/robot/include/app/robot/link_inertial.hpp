@@ -1,0 +1,48 @@
+#pragma once
+/// @file A link's inertial from its geometry: each geometry's exact mass properties (meshes
+/// through the same checks as `tumble inspect`, primitives in closed form), placed by its pose
+/// and summed about their common centre of mass.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/robot/robot_model.hpp"
+#include "engine/mass_properties.hpp"
+
+namespace tumble::app::robot {
+
+struct ComputeOptions {
+  /// kg/m^3. Unset: the link keeps the mass the file states (its weighed mass) and only the
+  /// centre of mass and inertia follow from the shape; a link stating none gets 1000 kg/m^3
+  /// (water; MuJoCo's default too). MJCF geoms with their own density or mass keep them
+  /// relative to each other either way.
+  std::optional<double> density;
+  /// Accept overlapping parts within one mesh (as `inspect --allow-overlap`).
+  bool allow_overlap = false;
+};
+
+/// What came of one link.
+struct LinkInertial {
+  /// In the link's frame; unset when the link has no geometry (it keeps its inertial) or a
+  /// geometry failed (`error`).
+  std::optional<engine::MassProperties> computed;
+  /// One line naming the link, the geometry and the file: "link 'arm' collision 0: arm.stl:
+  /// has 12 boundary edges ...".
+  std::optional<std::string> error;
+  /// True when the mass came from a density rather than from the file.
+  bool mass_from_density = false;
+  /// Warnings of the meshes' checks and notes on the link, one sentence each.
+  std::vector<std::string> notes;
+};
+
+/// The mass properties of one geometry filled with `density`, in the link's frame (or, when
+/// the geometry states its own mass, of that mass). Throws InputError naming the geometry.
+engine::MassProperties geometry_mass_properties(const Geometry& geometry, double density,
+                                                bool allow_overlap,
+                                                std::vector<std::string>* notes = nullptr);
+
+/// The link's inertial from its geometries (never throws InputError: failures are `error`).
+LinkInertial compute_link_inertial(const Link& link, const ComputeOptions& options);
+
+}  // namespace tumble::app::robot

@@ -1,0 +1,95 @@
+// A link's inertial from its geometry.
+#include "app/robot/link_inertial.hpp"
+
+#include <cmath>
+#include <type_traits>
+
+#include "app/scene/mesh_inspection.hpp"
+#include "engine/mesh_analysis.hpp"
+#include "tumble/errors.hpp"
+
+namespace tumble::app::robot {
+namespace {
+
+constexpr double kDefaultDensity = 1000.0;  // kg/m^3, water
+
+engine::MassProperties mesh_properties(const MeshGeometry& mesh, double density,
+                                       std::optional<double> mass, bool allow_overlap,
+                                       std::vector<std::string>* notes) {
+  engine::MassOptions options;
+  if (mass) {
+    options.mass = mass;
+  } else {
+    options.density = density;
+  }
+  options.scale = mesh.scale;
+  options.allow_overlap = allow_overlap;
+  const engine::MeshReport report = inspect_file(mesh.file, options);
+  if (notes) {
+    for (const std::string& warning : report.warnings) {
+      notes->push_back(mesh.file.string() + ": " + warning);
+    }
+  }
+  return report.mass_properties;
+}
+
+}  // namespace
+
+engine::MassProperties geometry_mass_properties(const Geometry& geometry, double density,
+                                                bool allow_overlap,
+                                                std::vector<std::string>* notes) {
+  const double rho = geometry.density.value_or(density);
+  engine::MassProperties local;
+  try {
+    local = std::visit(
+        [&](const auto& shape) {
+          using T = std::decay_t<decltype(shape)>;
+          if constexpr (std::is_same_v<T, MeshGeometry>) {
+            return mesh_properties(shape, rho, geometry.mass, allow_overlap, notes);
+          } else {
+            return geometry.mass ? engine::mass_properties_of_mass(shape, *geometry.mass)
+                                 : engine::mass_properties(shape, rho);
+          }
+        },
+        geometry.shape);
+  } catch (const InputError& error) {
+    throw InputError(geometry.where + ": " + error.what());
+  }
+  return local.rotated(geometry.pose.linear()).translated(geometry.pose.translation());
+}
+
+LinkInertial compute_link_inertial(const Link& link, const ComputeOptions& options) {
+  LinkInertial out;
+  if (link.geometries.empty()) {
+    out.notes.push_back("no geometry: its inertial is kept as the file states it");
+    return out;
+  }
+  // The file's mass, when it is one (zero, negative or missing masses are flagged elsewhere).
+  double stated_mass = 0.0;
+  if (link.stated && link.stated->mass) stated_mass = *link.stated->mass;
+  const bool keep_mass = !options.density && stated_mass > 0.0 && std::isfinite(stated_mass);
+  const double density = options.density.value_or(kDefaultDensity);
+  std::vector<engine::MassProperties> parts;
+  try {
+    for (const Geometry& geometry : link.geometries) {
+      parts.push_back(
+          geometry_mass_properties(geometry, density, options.allow_overlap, &out.notes));
+    }
+  } catch (const InputError& error) {
+    out.error = error.what();
+    return out;
+  }
+  engine::MassProperties total = engine::combined(parts);
+  out.mass_from_density = !keep_mass;
+  if (keep_mass) {
+    const double factor = stated_mass / total.mass;
+    total.mass = stated_mass;
+    total.inertia *= factor;
+  } else if (!options.density) {
+    out.notes.push_back("states no mass: computed with 1000 kg/m^3 (give --density)");
+  }
+  out.computed = total;
+  return out;
+}
+
+}  // namespace tumble::app::robot

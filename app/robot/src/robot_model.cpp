@@ -1,0 +1,91 @@
+// Which reader a robot file goes to, and where its mesh paths lead.
+#include "app/robot/robot_model.hpp"
+
+#include <cctype>
+#include <cstdlib>
+#include <sstream>
+
+#include "app/support/text_file.hpp"
+#include "tumble/errors.hpp"
+
+namespace tumble::app::robot {
+namespace {
+
+/// The name of the first element of an XML text (after the declaration, comments and
+/// processing instructions), or "" when there is none.
+std::string root_element_name(const std::string& text) {
+  std::size_t at = 0;
+  while ((at = text.find('<', at)) != std::string::npos) {
+    if (text.compare(at, 4, "<!--") == 0) {
+      at = text.find("-->", at);
+      if (at == std::string::npos) return "";
+    } else if (text.compare(at, 2, "<?") == 0 || text.compare(at, 2, "<!") == 0) {
+      at = text.find('>', at);
+      if (at == std::string::npos) return "";
+    } else {
+      std::size_t end = at + 1;
+      while (end < text.size() && text[end] != '>' && text[end] != '/' &&
+             !std::isspace(static_cast<unsigned char>(text[end]))) {
+        ++end;
+      }
+      return text.substr(at + 1, end - at - 1);
+    }
+  }
+  return "";
+}
+
+}  // namespace
+
+Robot read_robot(const std::filesystem::path& file, const ReadOptions& options) {
+  std::string text = read_text_file(file, "robot file");
+  const std::string root = root_element_name(text);
+  if (root == "robot") return read_urdf(file, std::move(text), options);
+  if (root == "sdf") return read_sdf(file, std::move(text), options);
+  if (root == "mujoco") return read_mjcf(file, std::move(text), options);
+  throw InputError(file.string() + ": not a robot description: its root element is " +
+                   (root.empty() ? std::string("missing") : "<" + root + ">") +
+                   " (expected <robot> for URDF, <sdf> for SDF or <mujoco> for MJCF)");
+}
+
+std::filesystem::path resolve_mesh_path(const std::string& uri, const std::filesystem::path& base,
+                                        const PackagePaths& packages, const std::string& where) {
+  static const std::string kPackage = "package://";
+  static const std::string kFile = "file://";
+  if (uri.empty()) throw InputError(where + ": the mesh has no file name");
+  if (uri.compare(0, kFile.size(), kFile) == 0) return uri.substr(kFile.size());
+  if (uri.compare(0, kPackage.size(), kPackage) != 0) {
+    if (uri.find("://") != std::string::npos) {
+      throw InputError(where + ": mesh '" + uri +
+                       "': only file paths, file:// and package:// URIs are read");
+    }
+    const std::filesystem::path path(uri);
+    return path.is_absolute() ? path : base / path;
+  }
+  const std::string rest = uri.substr(kPackage.size());
+  const std::size_t slash = rest.find('/');
+  const std::string name = rest.substr(0, slash);
+  const std::string inside = slash == std::string::npos ? "" : rest.substr(slash + 1);
+  for (const auto& [package, folder] : packages) {
+    if (package == name) return folder / inside;
+  }
+  // ROS_PACKAGE_PATH: folders separated by ':', each a package (named by its folder) or a
+  // folder of packages.
+  if (const char* ros = std::getenv("ROS_PACKAGE_PATH")) {
+    std::stringstream entries(ros);
+    std::string entry;
+    while (std::getline(entries, entry, ':')) {
+      if (entry.empty()) continue;
+      const std::filesystem::path folder(entry);
+      std::error_code error;
+      if (folder.filename() == name && std::filesystem::is_directory(folder, error)) {
+        return folder / inside;
+      }
+      if (std::filesystem::is_directory(folder / name, error)) return folder / name / inside;
+    }
+  }
+  throw InputError(where + ": mesh '" + uri + "': package '" + name +
+                   "' is not known (give --package-path " + name +
+                   "=DIR, or set ROS_PACKAGE_PATH)");
+}
+
+}  // namespace tumble::app::robot
