@@ -1,0 +1,65 @@
+// A robot file with only its inertial elements changed.
+#include "app/robot/rewrite.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "element_bytes.hpp"
+#include "tumble/errors.hpp"
+
+namespace tumble::app::robot {
+namespace {
+
+struct Edit {
+  ByteRange range;  // replaced bytes (empty for an insertion)
+  std::string text;
+};
+
+/// The unit of indentation the file uses: a tab if the link's children are indented by tabs.
+std::string indent_step(const Link& link) {
+  return link.child_indent.find('\t') != std::string::npos ? "\t" : "  ";
+}
+
+}  // namespace
+
+std::string rewritten_text(const Robot& robot,
+                           const std::vector<std::optional<engine::MassProperties>>& inertials,
+                           InertialFrame frame) {
+  if (inertials.size() != robot.links.size()) {
+    throw std::invalid_argument("rewritten_text: one inertial per link expected");
+  }
+  std::vector<Edit> edits;
+  for (std::size_t i = 0; i < robot.links.size(); ++i) {
+    if (!inertials[i]) continue;
+    const Link& link = robot.links[i];
+    const std::string step = indent_step(link);
+    if (link.inertial_bytes) {
+      const std::string indent = line_indent(robot.text, link.inertial_bytes->begin);
+      edits.push_back({*link.inertial_bytes,
+                       inertial_element(robot.format, *inertials[i], frame, indent, step)});
+    } else if (link.insert_at) {
+      edits.push_back(
+          {{*link.insert_at, *link.insert_at},
+           "\n" + link.child_indent +
+               inertial_element(robot.format, *inertials[i], frame, link.child_indent, step)});
+    } else {
+      throw InputError(robot.file.string() + ": link '" + link.name +
+                       "': has no place for an inertial element (it is a self-closing tag)");
+    }
+  }
+  std::sort(edits.begin(), edits.end(),
+            [](const Edit& a, const Edit& b) { return a.range.begin < b.range.begin; });
+  std::string out;
+  out.reserve(robot.text.size() + 512 * edits.size());
+  std::size_t at = 0;
+  for (const Edit& edit : edits) {
+    if (edit.range.begin < at) throw std::logic_error("rewritten_text: overlapping inertials");
+    out.append(robot.text, at, edit.range.begin - at);
+    out += edit.text;
+    at = edit.range.end;
+  }
+  out.append(robot.text, at, std::string::npos);
+  return out;
+}
+
+}  // namespace tumble::app::robot
