@@ -65,7 +65,10 @@ engine::Shape primitive_geom(const Attributes& a, const std::string& type, const
     pose.linear() = z_to(from - to);  // MuJoCo's geom z points from `to` to `from`
     pose.translation() = 0.5 * (from + to);
   }
-  const std::string size = a.get("size").value_or("");
+  // The geom's own size numbers replace only the first ones of its class's.
+  const Attributes inherited{pugi::xml_node(), a.inherited};
+  const std::string size = merged_size(inherited.get("size").value_or(""),
+                                       a.own("size") ? node.attribute("size").value() : "");
   const std::size_t needed = needed_sizes(type, half.has_value());
   if (word_count(size) < needed) {
     model.source.fail(node, where + ": size: a " + type + (half ? " with fromto" : "") + " takes " +
