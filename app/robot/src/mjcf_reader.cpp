@@ -150,8 +150,8 @@ void read_geoms(pugi::xml_node body, const std::string& childclass, Walk& walk, 
   if (wanted.empty() && !others.empty()) {
     link.notes.push_back(
         want_collision ? "no geom collides (contype and conaffinity 0): all its geoms are used"
-                       : "every geom collides (none has contype and conaffinity 0): all its "
-                         "geoms are used");
+                       : "no geom with mass is visual only (contype and conaffinity 0): all "
+                         "its geoms are used");
     link.geometries = std::move(others);
   } else {
     link.geometries = std::move(wanted);

@@ -135,7 +135,7 @@ class MjcfAgainstMujoco : public ::testing::Test {
                        double length = 0.1) {
     const Robot robot = read(file);
     const auto ours = tumble::testing::tumble_inertials(robot);
-    const std::filesystem::path written = folder_ / "written.xml";
+    const std::filesystem::path written = file.parent_path() / "written.xml";
     tumble::testing::write_text(written, rewritten_text(robot, ours, frame));
     const Robot again = read(written);
     const std::vector<BodyInertial> mujoco = tumble::testing::mujoco_bodies(written);
@@ -247,6 +247,19 @@ TEST_F(MjcfAgainstMujoco, StatedInertialsReadAsMujocoReadsThem) {
     agreement.add(mujoco[i], {*stated->mass, stated->center_of_mass, *stated->inertia}, 0.1);
   }
   expect_close(agreement, "stated inertials");
+}
+
+TEST_F(MjcfAgainstMujoco, ShippedArmGivesMujocosInertials) {
+  // A copy, so that the rewritten file can sit beside it and find the mesh the same way.
+  const std::filesystem::path assets = std::filesystem::path(TUMBLE_SOURCE_DIR) / "assets";
+  const std::filesystem::path file = folder_ / "robots" / "arm" / "arm.xml";
+  std::filesystem::create_directories(file.parent_path());
+  std::filesystem::copy_file(assets / "robots" / "arm" / "arm.xml", file);
+  std::filesystem::copy_file(assets / "meshes" / "rugby_ball.obj",
+                             folder_ / "meshes" / "rugby_ball.obj");
+  expect_close(compare(file, 0.3), "assets/robots/arm/arm.xml", kMeshTolerance);
+  expect_close(round_trip(file, InertialFrame::principal, 0.3),
+               "assets/robots/arm/arm.xml rewritten (quat + diaginertia)");
 }
 
 }  // namespace
