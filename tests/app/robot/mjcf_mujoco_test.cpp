@@ -262,5 +262,18 @@ TEST_F(MjcfAgainstMujoco, ShippedArmGivesMujocosInertials) {
                "assets/robots/arm/arm.xml rewritten (quat + diaginertia)");
 }
 
+/// MuJoCo's own sample models (libmujoco-samples) whose geoms all collide and that include no
+/// other file: every body's inertial from its geoms, as MuJoCo computes it.
+TEST_F(MjcfAgainstMujoco, MujocosSampleModelsGiveMujocosInertials) {
+  const std::filesystem::path samples = "/usr/share/mujoco/model";
+  if (!std::filesystem::is_directory(samples)) GTEST_SKIP() << "libmujoco-samples is not installed";
+  for (const char* name : {"humanoid/humanoid.xml", "humanoid/22_humanoids.xml",
+                           "slider_crank/slider_crank.xml", "tendon_arm/arm26.xml"}) {
+    const std::filesystem::path file = samples / name;
+    if (!std::filesystem::exists(file)) continue;
+    expect_close(compare(file, 1.0), std::string("MuJoCo sample ") + name);
+  }
+}
+
 }  // namespace
 }  // namespace tumble::app::robot
