@@ -31,9 +31,9 @@ constexpr double kTensorTolerance = 1e-5;
 
 /// Bodies of every kind of primitive geom, placed by pos with euler, quat, axisangle, xyaxes,
 /// zaxis and fromto; default classes (nested, by class and childclass); densities and masses
-/// of their own (and a size partly its class's); a plane in the world, a zero-density visual geom
-/// and a geom outside the inertia groups, all of which add no mass. ANGLE_UNIT, EULERSEQ and the
-/// angles are filled in.
+/// of their own (a class's mass over a geom's density, a size partly its class's); a plane in the
+/// world, a zero-density visual geom and a geom outside the inertia groups, all of which add no
+/// mass. ANGLE_UNIT, EULERSEQ and the angles are filled in.
 const char* const kPrimitives = R"(<mujoco model="primitives">
   <compiler angle="ANGLE_UNIT" eulerseq="EULERSEQ" inertiagrouprange="0 2"/>
   <default>
@@ -43,6 +43,9 @@ const char* const kPrimitives = R"(<mujoco model="primitives">
       <default class="pin">
         <geom type="capsule" size="0.015 0.04"/>
       </default>
+    </default>
+    <default class="weighed">
+      <geom mass="0.5"/>
     </default>
     <default class="visual">
       <geom contype="0" conaffinity="0" group="1" density="0"/>
@@ -73,6 +76,7 @@ const char* const kPrimitives = R"(<mujoco model="primitives">
     <body>
       <geom type="capsule" size="0.02 0.05" euler="EULER_B" pos="0.1 0.2 0.3"/>
       <geom type="cylinder" size="0.02 0.05" euler="EULER_A"/>
+      <geom class="weighed" type="box" size="0.01 0.02 0.03" density="100" pos="0 0.1 0"/>
     </body>
   </worldbody>
 </mujoco>
