@@ -209,6 +209,10 @@ const char* const kMeshModel = R"(<mujoco model="mesh">
       <geom type="mesh" mesh="stretched" pos="0.1 0 0.02" euler="30 0 45"/>
       <geom type="box" size="0.02 0.03 0.01" pos="-0.05 0 0" mass="0.4"/>
     </body>
+    <body name="weighed">
+      <geom type="mesh" mesh="prism" mass="0.7" quat="0.5 0.5 -0.5 0.5" pos="0 0 -0.1"/>
+      <geom type="sphere" size="0.03" pos="0.05 0 0"/>
+    </body>
   </worldbody>
 </mujoco>
 )";
