@@ -22,6 +22,7 @@ using mjcf::parse_numbers;
 constexpr std::array<std::string_view, 5> kRefused = {"frame", "composite", "flexcomp", "replicate",
                                                       "attach"};
 
+/// Throws at the first <include> anywhere below `node`.
 void refuse_includes(pugi::xml_node node, const mjcf::Source& source) {
   for (const pugi::xml_node child : node.children()) {
     if (std::string_view(child.name()) == "include") {
@@ -33,6 +34,7 @@ void refuse_includes(pugi::xml_node node, const mjcf::Source& source) {
   }
 }
 
+/// One <compiler>'s settings into `out` (its meshdir and assetdir as written).
 void read_compiler_element(pugi::xml_node c, const mjcf::Source& source, mjcf::Compiler& out,
                            std::string& meshdir, std::string& assetdir) {
   if (const pugi::xml_attribute a = c.attribute("angle")) {
@@ -71,6 +73,7 @@ void read_compiler_element(pugi::xml_node c, const mjcf::Source& source, mjcf::C
   if (const pugi::xml_attribute a = c.attribute("assetdir")) assetdir = a.value();
 }
 
+/// The settings of all <compiler> elements (MuJoCo applies them before anything else).
 mjcf::Compiler read_compiler(pugi::xml_node root, const mjcf::Source& source) {
   mjcf::Compiler out;
   std::string meshdir, assetdir;
@@ -158,6 +161,7 @@ void read_geoms(pugi::xml_node body, const std::string& childclass, Walk& walk, 
   }
 }
 
+/// The body as a link, then its child bodies.
 void read_body(pugi::xml_node body, const std::string& inherited_class, Walk& walk) {
   const mjcf::Source& source = walk.model.source;
   const std::string childclass = body.attribute("childclass").as_string(inherited_class.c_str());
@@ -184,6 +188,7 @@ void read_body(pugi::xml_node body, const std::string& inherited_class, Walk& wa
   read_children(body, childclass, walk);
 }
 
+/// The bodies among `parent`'s children (refusing what tumble would read wrong).
 void read_children(pugi::xml_node parent, const std::string& childclass, Walk& walk) {
   for (const pugi::xml_node child : parent.children()) {
     const std::string_view kind = child.name();
