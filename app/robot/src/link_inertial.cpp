@@ -1,6 +1,7 @@
 // A link's inertial from its geometry.
 #include "app/robot/link_inertial.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <type_traits>
 
@@ -86,7 +87,17 @@ LinkInertial compute_link_inertial(const Link& link, const ComputeOptions& optio
     total.mass = stated_mass;
     total.inertia *= factor;
   } else if (!options.density) {
-    out.notes.push_back("states no mass: computed with 1000 kg/m^3 (give --density)");
+    // MJCF geoms may give their own density or mass: then 1000 kg/m^3 is not what was used.
+    const bool all_own = std::all_of(link.geometries.begin(), link.geometries.end(),
+                                     [](const Geometry& g) { return g.density || g.mass; });
+    const bool some_own = std::any_of(link.geometries.begin(), link.geometries.end(),
+                                      [](const Geometry& g) { return g.density || g.mass; });
+    out.notes.push_back(all_own    ? "states no mass: computed from its geoms' own densities "
+                                     "and masses"
+                        : some_own ? "states no mass: computed from its geoms' own densities "
+                                     "and masses, 1000 kg/m^3 where a geom gives none (give "
+                                     "--density)"
+                                   : "states no mass: computed with 1000 kg/m^3 (give --density)");
   }
   out.computed = total;
   return out;
