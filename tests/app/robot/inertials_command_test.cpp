@@ -137,6 +137,10 @@ TEST_F(InertialsCommand, PackagePathsFromTheOptionAndFromRosPackagePath) {
   const auto ros = run_command("ROS_PACKAGE_PATH=/nowhere:" + path("share") + " " +
                                tumble_executable() + " inertials " + path("pkg.urdf"));
   EXPECT_EQ(ros.status, 0) << ros.err;
+  // An entry may name the package folder itself, with or without a trailing '/'.
+  const auto itself = run_command("ROS_PACKAGE_PATH=" + path("share/mypkg/") + " " +
+                                  tumble_executable() + " inertials " + path("pkg.urdf"));
+  EXPECT_EQ(itself.status, 0) << itself.err;
   EXPECT_EQ(inertials("--package-path mypkg " + path("pkg.urdf")).status, 1);
 }
 
@@ -207,6 +211,19 @@ TEST_F(InertialsCommand, RoundTripKeepsEveryOtherByteAndChecksClean) {
     }
   }
   EXPECT_THAT(read_text(dir_ / "out.urdf"), HasSubstr("<!-- kept: a comment <inertial>"));
+}
+
+TEST_F(InertialsCommand, ACrlfFileKeepsItsLineBreaks) {
+  std::string crlf;
+  for (const char c : std::string(kRobot))
+    crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  write_file(dir_ / "crlf.urdf", crlf);
+  ASSERT_EQ(inertials(path("crlf.urdf") + " -o " + path("out.urdf")).status, 0);
+  const std::string out = read_text(dir_ / "out.urdf");
+  for (std::size_t at = out.find('\n'); at != std::string::npos; at = out.find('\n', at + 1)) {
+    ASSERT_EQ(out[at - 1], '\r') << "a bare line feed at byte " << at;
+  }
+  EXPECT_EQ(inertials("--check " + path("out.urdf")).status, 0);
 }
 
 TEST_F(InertialsCommand, AMissingInertialIsInsertedAtTheLinksIndentation) {
