@@ -1,6 +1,7 @@
 // `tumble inertials`.
 #include "app/commands/inertials_command.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <ostream>
@@ -38,9 +39,11 @@ CLI::App& add_inertials_command(CLI::App& cli, InertialsOptions& options) {
           "kg/m^3 for every link: the masses follow from the volumes (default: keep each "
           "link's stated mass; 1000 for a link stating none)")
       ->check(CLI::PositiveNumber);
-  command.add_option("--package-path", options.package_paths,
-                     "NAME=DIR: where package://NAME/ (and SDF model://NAME/) lead; repeatable, "
-                     "looked at before ROS_PACKAGE_PATH");
+  command
+      .add_option("--package-path", options.package_paths,
+                  "NAME=DIR: where package://NAME/ (and SDF model://NAME/) lead; repeatable, "
+                  "looked at before ROS_PACKAGE_PATH")
+      ->allow_extra_args(false);  // one NAME=DIR each time: ROBOT may follow
   const std::map<std::string, robot::InertialFrame> frames = {
       {"mesh", robot::InertialFrame::mesh}, {"principal", robot::InertialFrame::principal}};
   command
@@ -77,6 +80,25 @@ robot::PackagePaths package_paths(const std::vector<std::string>& given) {
     out.emplace_back(entry.substr(0, equals), entry.substr(equals + 1));
   }
   return out;
+}
+
+/// `properties` as -o writes them: a centre-of-mass coordinate or product of inertia within
+/// rounding of zero (1e-12 of the link's size or inertia: what summing a mesh's triangles
+/// leaves of an exact zero) is written 0, not 9.5e-21.
+engine::MassProperties written_inertial(engine::MassProperties properties) {
+  const double size = std::sqrt(properties.inertia.trace() / (2.0 * properties.mass));
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(properties.center_of_mass[i]) <= 1e-12 * size) properties.center_of_mass[i] = 0;
+  }
+  const double scale = properties.inertia.norm();
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      if (i != j && std::abs(properties.inertia(i, j)) <= 1e-12 * scale) {
+        properties.inertia(i, j) = 0;
+      }
+    }
+  }
+  return properties;
 }
 
 /// Writes `text` to `output` whole or not at all: a temporary sibling renamed into place.
@@ -131,7 +153,11 @@ int inertials(const InertialsOptions& options, std::ostream& out, std::ostream& 
   }
   if (options.output) {
     std::vector<std::optional<engine::MassProperties>> inertials;
-    for (const LinkComparison& link : links) inertials.push_back(link.result.computed);
+    for (const LinkComparison& link : links) {
+      inertials.push_back(link.result.computed
+                              ? std::optional(written_inertial(*link.result.computed))
+                              : std::nullopt);
+    }
     write_atomically(*options.output, options.robot,
                      robot::rewritten_text(robot, inertials, options.frame));
   }

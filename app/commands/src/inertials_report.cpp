@@ -123,6 +123,21 @@ nlohmann::json link_json(const LinkComparison& link, double tolerance, bool chec
   return out;
 }
 
+/// "\ncheck: 2 of 5 links differ by more than 0.001: 'turret', 'hand'\n".
+std::string check_summary(const std::vector<LinkComparison>& links, double tolerance) {
+  std::string names;
+  std::size_t failing = 0;
+  for (const LinkComparison& link : links) {
+    if (within_tolerance(link, tolerance)) continue;
+    names += std::string(failing++ ? ", '" : "'") + link.name + "'";
+  }
+  char bound[32];
+  std::snprintf(bound, sizeof bound, "%g", tolerance);
+  if (failing == 0) return "\ncheck: every link is within " + std::string(bound) + "\n";
+  return "\ncheck: " + std::to_string(failing) + " of " + std::to_string(links.size()) +
+         " links differ by more than " + bound + " or cannot be compared: " + names + "\n";
+}
+
 }  // namespace
 
 LinkComparison compare_link(const robot::Link& link, robot::LinkInertial result) {
@@ -189,6 +204,7 @@ std::string format_comparison(const robot::Robot& robot, const std::vector<LinkC
     for (const std::string& problem : link.problems) out += "  ! " + problem + "\n";
     for (const std::string& note : link.notes) out += "  note: " + note + "\n";
   }
+  if (check) out += check_summary(links, tolerance);
   return out;
 }
 
