@@ -3,7 +3,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <map>
 #include <ostream>
 
 #include <CLI/CLI.hpp>
@@ -28,11 +27,16 @@ CLI::App& add_inertials_command(CLI::App& cli, InertialsOptions& options) {
       "then nothing is written); 4 --check found a link differing by more than the tolerance.");
   command.add_option("ROBOT", options.robot, "Robot file: .urdf, .sdf/.world, MJCF .xml")
       ->required();
-  const std::map<std::string, robot::GeometrySource> sources = {
-      {"collision", robot::GeometrySource::collision}, {"visual", robot::GeometrySource::visual}};
   command
-      .add_option("--from", options.from, "Which geometry gives a link's shape (default collision)")
-      ->transform(CLI::CheckedTransformer(sources));
+      .add_option_function<std::string>(
+          "--from",
+          [&](const std::string& value) {
+            options.from = value == "visual" ? robot::GeometrySource::visual
+                                             : robot::GeometrySource::collision;
+          },
+          "Which geometry gives a link's shape (default collision)")
+      ->check(CLI::IsMember({"collision", "visual"}))
+      ->option_text("collision|visual");
   command
       .add_option_function<double>(
           "--density", [&](double value) { options.compute.density = value; },
@@ -41,16 +45,21 @@ CLI::App& add_inertials_command(CLI::App& cli, InertialsOptions& options) {
       ->check(CLI::PositiveNumber);
   command
       .add_option("--package-path", options.package_paths,
-                  "NAME=DIR: where package://NAME/ (and SDF model://NAME/) lead; repeatable, "
+                  "Where package://NAME/ (and SDF model://NAME/) lead; repeatable, "
                   "looked at before ROS_PACKAGE_PATH")
-      ->allow_extra_args(false);  // one NAME=DIR each time: ROBOT may follow
-  const std::map<std::string, robot::InertialFrame> frames = {
-      {"mesh", robot::InertialFrame::mesh}, {"principal", robot::InertialFrame::principal}};
+      ->allow_extra_args(false)  // one NAME=DIR each time: ROBOT may follow
+      ->option_text("NAME=DIR");
   command
-      .add_option("--frame", options.frame,
-                  "How -o writes the inertia: mesh (the link's axes, all six elements; default) "
-                  "or principal (the principal axes' rotation and three moments)")
-      ->transform(CLI::CheckedTransformer(frames));
+      .add_option_function<std::string>(
+          "--frame",
+          [&](const std::string& value) {
+            options.frame =
+                value == "principal" ? robot::InertialFrame::principal : robot::InertialFrame::mesh;
+          },
+          "How -o writes the inertia: mesh (the link's axes, all six elements; default) or "
+          "principal (the principal axes' rotation and three moments)")
+      ->check(CLI::IsMember({"mesh", "principal"}))
+      ->option_text("mesh|principal");
   command.add_flag("--allow-overlap", options.compute.allow_overlap,
                    "Accept meshes whose parts overlap (as inspect --allow-overlap)");
   command.add_flag("--json", options.json, "Print the comparison as JSON");
