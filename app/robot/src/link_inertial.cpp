@@ -86,7 +86,9 @@ LinkInertial compute_link_inertial(const Link& link, const ComputeOptions& optio
     total.mass = stated_mass;
     total.inertia *= factor;
   } else if (!options.density) {
-    out.notes.push_back("states no mass: computed with 1000 kg/m^3 (give --density)");
+    out.notes.push_back(
+        "states no usable mass (none, zero or negative): filled with 1000 kg/m^3 (give "
+        "--density)");
   }
   out.computed = total;
   return out;

@@ -87,6 +87,8 @@ TEST_F(InertialsCommand, ReportsEachLinkAndFlagsImpossibleStatedValues) {
   const auto text = inertials(path("flags.urdf"));
   ASSERT_EQ(text.status, 0) << text.err;
   EXPECT_THAT(text.out, HasSubstr("the stated mass is zero"));
+  EXPECT_THAT(text.out, HasSubstr("note: states no usable mass (none, zero or negative): filled "
+                                  "with 1000 kg/m^3"));
   EXPECT_THAT(text.out, HasSubstr("break the triangle inequality"));
   EXPECT_THAT(text.out, HasSubstr("not positive definite"));
   EXPECT_THAT(text.out, HasSubstr("no <inertial> element"));
