@@ -46,9 +46,11 @@ std::string relative(const std::optional<double>& value, double tolerance, bool 
 std::string row(const char* what, const std::string& stated, const std::string& computed,
                 const std::string& difference) {
   char buffer[256];
-  std::snprintf(buffer, sizeof buffer, "  %-16s %-32s %-32s %s\n", what, stated.c_str(),
+  std::snprintf(buffer, sizeof buffer, "  %-16s %-38s %-38s %s", what, stated.c_str(),
                 computed.c_str(), difference.c_str());
-  return buffer;
+  std::string out = buffer;
+  out.erase(out.find_last_not_of(' ') + 1);
+  return out + "\n";
 }
 
 Eigen::Vector3d moments_of(const Eigen::Matrix3d& inertia) {
