@@ -166,6 +166,7 @@ Link read_link(const pugi::xml_node& node, const std::string& prefix, const Cont
     geometry.shape = std::move(*read);
     link.geometries.push_back(std::move(geometry));
   }
+  note_other_geometry(link, node, context.options.from);
   return link;
 }
 

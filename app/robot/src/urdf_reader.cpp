@@ -132,6 +132,7 @@ Link read_link(const pugi::xml_node& node, const std::string& text, const Contex
     geometry.shape = geometry_shape(shape, at, context);
     link.geometries.push_back(std::move(geometry));
   }
+  note_other_geometry(link, node, context.options.from);
   return link;
 }
 

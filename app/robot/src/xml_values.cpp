@@ -113,6 +113,14 @@ void locate_inertial(Link& link, const std::string& text, const pugi::xml_node& 
   }
 }
 
+void note_other_geometry(Link& link, const pugi::xml_node& link_node, GeometrySource from) {
+  if (!link.geometries.empty()) return;
+  const bool collision = from == GeometrySource::collision;
+  if (!link_node.child(collision ? "visual" : "collision")) return;
+  link.notes.push_back(collision ? "has no <collision> geometry, only <visual> (--from visual)"
+                                 : "has no <visual> geometry, only <collision> (--from collision)");
+}
+
 std::size_t line_of(const std::string& text, std::size_t offset) {
   std::size_t line = 1;
   for (std::size_t i = 0; i < offset && i < text.size(); ++i) line += text[i] == '\n' ? 1 : 0;

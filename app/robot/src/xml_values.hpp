@@ -48,6 +48,10 @@ Eigen::Matrix3d inertia_matrix(double ixx, double ixy, double ixz, double iyy, d
 void locate_inertial(Link& link, const std::string& text, const pugi::xml_node& link_node,
                      const pugi::xml_node& inertial_node);
 
+/// Adds a note to a link that has none of the geometry asked for (`kind`, "collision" or
+/// "visual") but has the other kind, naming the option that would use it.
+void note_other_geometry(Link& link, const pugi::xml_node& link_node, GeometrySource from);
+
 /// The 1-based line of byte `offset` of `text`, for messages.
 std::size_t line_of(const std::string& text, std::size_t offset);
 

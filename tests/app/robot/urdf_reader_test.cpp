@@ -78,6 +78,10 @@ TEST_F(UrdfReader, ReadsPrimitivesWithTheirOrigins) {
   ReadOptions visual;
   visual.from = GeometrySource::visual;
   EXPECT_EQ(read_robot(dir_ / "robot.urdf", visual).links[0].geometries.size(), 1u);
+  const Robot only_visual = read(
+      "<link name=\"v\"><visual><geometry><sphere radius=\"1\"/></geometry></visual></link>\n");
+  EXPECT_THAT(only_visual.links[0].notes,
+              ::testing::ElementsAre("has no <collision> geometry, only <visual> (--from visual)"));
 }
 
 TEST_F(UrdfReader, RotatesTheStatedInertiaIntoTheLinkAxes) {
