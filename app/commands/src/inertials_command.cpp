@@ -134,6 +134,8 @@ int inertials(const InertialsOptions& options, std::ostream& out, std::ostream& 
   robot::ReadOptions read;
   read.from = options.from;
   read.packages = package_paths(options.package_paths);
+  // A refused output fails before any work (and checked again when written).
+  if (options.output) checked_output(*options.output, {options.robot});
   const robot::Robot robot = robot::read_robot(options.robot, read);
   std::vector<LinkComparison> links;
   bool failed = false;

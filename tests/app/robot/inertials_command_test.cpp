@@ -250,6 +250,7 @@ TEST_F(InertialsCommand, RefusesToOverwriteTheInputOrToWriteWhereItCannot) {
   const auto onto = inertials(path("robot.urdf") + " -o " + path("robot.urdf"));
   EXPECT_EQ(onto.status, 1);
   EXPECT_THAT(onto.err, HasSubstr("an input is never overwritten"));
+  EXPECT_EQ(onto.out, "");  // refused before any work
   EXPECT_EQ(read_text(dir_ / "robot.urdf"), kRobot);
   const auto nowhere = inertials(path("robot.urdf") + " -o " + path("missing/out.urdf"));
   EXPECT_EQ(nowhere.status, 1);
