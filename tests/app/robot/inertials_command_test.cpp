@@ -120,6 +120,32 @@ TEST_F(InertialsCommand, DensityGivesTheMassesFromTheVolumes) {
   EXPECT_TRUE(data["links"][2]["computed"].is_null());
 }
 
+TEST_F(InertialsCommand, PrimitivesArePlacedByTheirOrigins) {
+  // A cylinder turned by pitch pi/2 (its axis along x) and a sphere moved to (0, 0.3, 0).
+  write_file(dir_ / "shapes.urdf", R"(<robot name="r">
+  <link name="cylinder"><collision><origin rpy="0 1.5707963267948966 0"/>
+    <geometry><cylinder radius="0.1" length="0.4"/></geometry></collision></link>
+  <link name="sphere"><collision><origin xyz="0 0.3 0"/>
+    <geometry><sphere radius="0.2"/></geometry></collision></link>
+</robot>
+)");
+  const auto result = inertials("--json --density 1000 " + path("shapes.urdf"));
+  ASSERT_EQ(result.status, 0) << result.err;
+  const auto data = nlohmann::json::parse(result.out);
+  const auto& cylinder = data["links"][0]["computed"];
+  const double m = 1000 * M_PI * 0.01 * 0.4, r2 = 0.01, l2 = 0.16;
+  EXPECT_NEAR(cylinder["mass"].get<double>(), m, 1e-12);
+  const auto& inertia = cylinder["inertia"];
+  EXPECT_NEAR(inertia[0][0].get<double>(), m * r2 / 2, 1e-14);
+  EXPECT_NEAR(inertia[1][1].get<double>(), m * (3 * r2 + l2) / 12, 1e-14);
+  EXPECT_NEAR(inertia[2][2].get<double>(), m * (3 * r2 + l2) / 12, 1e-14);
+  EXPECT_NEAR(inertia[0][2].get<double>(), 0.0, 1e-14);
+  const auto& sphere = data["links"][1]["computed"];
+  EXPECT_NEAR(sphere["center_of_mass"][1].get<double>(), 0.3, 1e-15);
+  const double ms = 1000 * 4.0 / 3 * M_PI * 0.008;
+  EXPECT_NEAR(sphere["inertia"][0][0].get<double>(), 0.4 * ms * 0.04, 1e-13);
+}
+
 TEST_F(InertialsCommand, PackagePathsFromTheOptionAndFromRosPackagePath) {
   std::filesystem::create_directories(dir_ / "share" / "mypkg" / "meshes");
   tumble::testing::write_stl_file(dir_ / "share" / "mypkg" / "meshes" / "part.stl",
