@@ -12,6 +12,7 @@
 
 #include "app/commands/bench_command.hpp"
 #include "app/commands/exit_status.hpp"
+#include "app/commands/inertials_command.hpp"
 #include "app/commands/inspect_command.hpp"
 #include "app/commands/simulate_command.hpp"
 #include "app/commands/stability_command.hpp"
@@ -63,6 +64,8 @@ int main(int argc, char** argv) {
   tumble::app::StabilityOptions stability_options;
   CLI::App& stability = tumble::app::add_stability_command(cli, stability_options);
   add_placeholder(cli, tumble::app::kViewSummary);
+  tumble::app::InertialsOptions inertials_options;
+  CLI::App& inertials = tumble::app::add_inertials_command(cli, inertials_options);
 
   try {
     cli.parse(argc, argv);
@@ -72,6 +75,9 @@ int main(int argc, char** argv) {
   }
   if (inspect.parsed()) return tumble::app::run_inspect(inspect_options, std::cout, std::cerr);
   if (simulate.parsed()) return tumble::app::run_simulate(simulate_options, std::cout, std::cerr);
+  if (inertials.parsed()) {
+    return tumble::app::run_inertials(inertials_options, std::cout, std::cerr);
+  }
   if (bench.parsed()) return tumble::app::run_bench(bench_options, std::cout, std::cerr);
   if (stability.parsed()) {
     return tumble::app::run_stability(stability_options, std::cout, std::cerr);

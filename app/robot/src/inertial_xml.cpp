@@ -5,6 +5,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Geometry>
 
@@ -97,11 +98,18 @@ std::string xml_number(double value) {
 }
 
 Eigen::Vector3d roll_pitch_yaw(const Eigen::Matrix3d& R) {
-  const double pitch = std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
-  if (std::abs(R(2, 0)) > 1.0 - 1e-12) {  // gimbal lock: only roll -+ yaw is defined
-    return {0.0, pitch, std::atan2(-R(0, 1), R(1, 1))};
-  }
-  return {std::atan2(R(2, 1), R(2, 2)), pitch, std::atan2(R(1, 0), R(0, 0))};
+  // Pitch from atan2, not asin(-R(2,0)): near +-pi/2 the asin of a rounded sine is off by up to
+  // 1e-8 rad. Roll follows from the yaw found (M. Day, "Extracting Euler angles from a rotation
+  // matrix"), so that the three read back as R even where yaw itself is poorly conditioned.
+  const double cos_pitch = std::hypot(R(0, 0), R(1, 0));
+  const double pitch = std::atan2(-R(2, 0), cos_pitch);
+  // At gimbal lock (cos pitch down to rounding) only roll -+ yaw is defined: the yaw is the one
+  // that leaves no roll. Any larger cos pitch still carries the yaw.
+  const double yaw = cos_pitch < 4 * std::numeric_limits<double>::epsilon()
+                         ? std::atan2(-R(0, 1), R(1, 1))
+                         : std::atan2(R(1, 0), R(0, 0));
+  const double s = std::sin(yaw), c = std::cos(yaw);
+  return {std::atan2(s * R(0, 2) - c * R(1, 2), c * R(1, 1) - s * R(0, 1)), pitch, yaw};
 }
 
 Eigen::Matrix3d rotation_from_rpy(const Eigen::Vector3d& rpy) {

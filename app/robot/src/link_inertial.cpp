@@ -92,12 +92,11 @@ LinkInertial compute_link_inertial(const Link& link, const ComputeOptions& optio
                                      [](const Geometry& g) { return g.density || g.mass; });
     const bool some_own = std::any_of(link.geometries.begin(), link.geometries.end(),
                                       [](const Geometry& g) { return g.density || g.mass; });
-    out.notes.push_back(all_own    ? "states no mass: computed from its geoms' own densities "
-                                     "and masses"
-                        : some_own ? "states no mass: computed from its geoms' own densities "
-                                     "and masses, 1000 kg/m^3 where a geom gives none (give "
-                                     "--density)"
-                                   : "states no mass: computed with 1000 kg/m^3 (give --density)");
+    const std::string why = "states no usable mass (none, zero or negative): ";
+    out.notes.push_back(why + (all_own    ? "computed from its geoms' own densities and masses"
+                               : some_own ? "computed from its geoms' own densities and masses, "
+                                            "1000 kg/m^3 where a geom gives none (give --density)"
+                                          : "filled with 1000 kg/m^3 (give --density)"));
   }
   out.computed = total;
   return out;

@@ -36,7 +36,8 @@ std::filesystem::path resolve_mesh_path(const std::string& uri, const std::files
     std::string entry;
     while (std::getline(entries, entry, ':')) {
       if (entry.empty()) continue;
-      const std::filesystem::path folder(entry);
+      std::filesystem::path folder(entry);
+      if (!folder.has_filename()) folder = folder.parent_path();  // "/opt/pkg/" names pkg too
       std::error_code error;
       if (folder.filename() == name && std::filesystem::is_directory(folder, error)) {
         return folder / inside;

@@ -15,6 +15,20 @@ struct Edit {
   std::string text;
 };
 
+/// `element` with the file's line break: "\r\n" in a file whose first line ends so, so that
+/// a rewritten CRLF file does not mix line endings.
+std::string with_line_breaks(const std::string& text, std::string element) {
+  const std::size_t first = text.find('\n');
+  if (first == std::string::npos || first == 0 || text[first - 1] != '\r') return element;
+  std::string out;
+  out.reserve(element.size() + element.size() / 16);
+  for (const char c : element) {
+    if (c == '\n') out += '\r';
+    out += c;
+  }
+  return out;
+}
+
 /// The unit of indentation the file uses: a tab if the link's children are indented by tabs.
 std::string indent_step(const Link& link) {
   return link.child_indent.find('\t') != std::string::npos ? "\t" : "  ";
@@ -47,6 +61,7 @@ std::string rewritten_text(const Robot& robot,
                        "': has no place for an inertial element (it is a self-closing tag)");
     }
   }
+  for (Edit& edit : edits) edit.text = with_line_breaks(robot.text, std::move(edit.text));
   std::sort(edits.begin(), edits.end(),
             [](const Edit& a, const Edit& b) { return a.range.begin < b.range.begin; });
   std::string out;

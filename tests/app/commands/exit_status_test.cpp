@@ -132,6 +132,7 @@ TEST_F(CommandExitStatus, UnknownOptionsAreOneLineAndStatusOneForEveryCommand) {
       {"compare", scene_ + " --integrators rk4,splitting -o " + out("a.mp4")},
       {"bench", scene_ + " -o " + out("b")},
       {"stability", "-o " + out("s")},
+      {"inertials", out("robot.urdf")},
       {"view", ""}};
   for (const auto& [command, arguments] : commands) {
     expect_bad_input(command + " " + arguments + " --no-such-option",
@@ -152,6 +153,8 @@ TEST_F(CommandExitStatus, UnparsableValuesAreOneLineAndStatusOne) {
                    "tumble bench: error: ", "--repeat");
   expect_bad_input("stability -o " + out("s") + " --dts 0.1,abc",
                    "tumble stability: error: ", "--dts");
+  expect_bad_input("inertials " + out("r.urdf") + " --tolerance abc",
+                   "tumble inertials: error: ", "--tolerance");
   expect_bad_input("view --dt abc", "tumble view: error: ", "--dt");
 }
 
@@ -165,6 +168,8 @@ TEST_F(CommandExitStatus, MissingInputFilesAreOneLineNamingTheFile) {
   expect_bad_input("bench " + missing + " -o " + out("b"), "tumble bench: error: ", missing);
   expect_bad_input("stability " + missing + " -o " + out("s"),
                    "tumble stability: error: ", missing);
+  expect_bad_input("inertials " + out("missing.urdf") + " -o " + out("o.urdf"),
+                   "tumble inertials: error: ", "missing.urdf");
   // Nothing was written for any of them.
   EXPECT_EQ(tumble::testing::directory_entries(dir_), std::vector<std::string>{"scene.json"});
 }
@@ -174,7 +179,7 @@ TEST_F(CommandExitStatus, HelpAndVersionExitZero) {
   EXPECT_EQ(help.status, 0);
   // Every command is listed by the one `tumble`, those that draw included.
   for (const char* command :
-       {"inspect", "simulate", "render", "compare", "bench", "stability", "view"}) {
+       {"inspect", "simulate", "render", "compare", "bench", "stability", "view", "inertials"}) {
     EXPECT_THAT(help.out, HasSubstr(std::string("\n  ") + command + " ")) << command;
   }
   const auto render_help = tumble("render --help");

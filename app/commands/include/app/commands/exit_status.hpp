@@ -6,6 +6,8 @@
 ///   1    bad input: a tumble::InputError (scene, mesh, option, output path, ffmpeg failing on
 ///        the output), reported as one line naming the file and field
 ///   3    the run blew up (its outputs are still written, as each command documents)
+///   4    `inertials --check`: a link's stated inertial differs from its geometry's by more
+///        than the tolerance
 ///   70   internal error: any other exception, which is a bug in tumble, never "bad input"
 ///   130  interrupted by SIGINT or SIGTERM (nothing left under the output name)
 
@@ -20,6 +22,7 @@ namespace tumble::app {
 inline constexpr int kExitDone = 0;
 inline constexpr int kExitInputError = 1;
 inline constexpr int kExitBlowUp = 3;
+inline constexpr int kExitCheckFailed = 4;
 inline constexpr int kExitInternalError = 70;
 inline constexpr int kExitInterrupted = 130;
 

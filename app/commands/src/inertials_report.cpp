@@ -1,0 +1,226 @@
+// `tumble inertials`' comparison, as a table and as JSON.
+#include "inertials_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "engine/principal_frame.hpp"
+
+namespace tumble::app {
+namespace {
+
+const char* format_name(robot::RobotFormat format) {
+  switch (format) {
+    case robot::RobotFormat::urdf:
+      return "urdf";
+    case robot::RobotFormat::sdf:
+      return "sdf";
+    case robot::RobotFormat::mjcf:
+      return "mjcf";
+  }
+  return "";
+}
+
+/// "%.6g" of each value, space-separated; values within rounding of zero next to `scale`
+/// (the row's largest by default) are written 0, not as -5.8e-20.
+std::string numbers(const Eigen::Ref<const Eigen::VectorXd>& values, double scale = 0.0) {
+  if (scale == 0.0) scale = values.cwiseAbs().maxCoeff();
+  std::string out;
+  char buffer[32];
+  for (Eigen::Index i = 0; i < values.size(); ++i) {
+    const double value = std::abs(values[i]) <= 1e-12 * scale ? 0.0 : values[i];
+    std::snprintf(buffer, sizeof buffer, "%.6g", value);
+    out += (i ? " " : "") + std::string(buffer);
+  }
+  return out;
+}
+
+std::string relative(const std::optional<double>& value, double tolerance, bool check) {
+  if (!value) return "-";
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3g", *value);
+  return std::string(buffer) + (check && *value > tolerance ? "  > tolerance" : "");
+}
+
+std::string row(const char* what, const std::string& stated, const std::string& computed,
+                const std::string& difference) {
+  char buffer[256];
+  std::snprintf(buffer, sizeof buffer, "  %-16s %-38s %-38s %s", what, stated.c_str(),
+                computed.c_str(), difference.c_str());
+  std::string out = buffer;
+  out.erase(out.find_last_not_of(' ') + 1);
+  return out + "\n";
+}
+
+Eigen::Vector3d moments_of(const Eigen::Matrix3d& inertia) {
+  return engine::principal_frame(inertia).moments;
+}
+
+Eigen::Vector3d off_diagonal(const Eigen::Matrix3d& inertia) {
+  return {inertia(0, 1), inertia(0, 2), inertia(1, 2)};
+}
+
+/// What is wrong with the stated inertial as a rigid body's, one sentence each.
+std::vector<std::string> stated_problems(const std::optional<robot::StatedInertial>& stated) {
+  if (!stated) return {"no <inertial> element"};
+  std::vector<std::string> out;
+  if (!stated->mass) {
+    out.push_back("the stated mass is missing");
+  } else if (*stated->mass <= 0.0) {
+    out.push_back(*stated->mass == 0.0 ? "the stated mass is zero" : "the stated mass is negative");
+  }
+  if (!stated->inertia) {
+    out.push_back("the stated inertia is missing");
+  } else if (const auto problem = engine::principal_moments_problem(moments_of(*stated->inertia))) {
+    const bool positive = (moments_of(*stated->inertia).array() > 0.0).all();
+    out.push_back(std::string(positive ? "the stated inertia is impossible: "
+                                       : "the stated inertia is not positive definite: ") +
+                  *problem);
+  }
+  return out;
+}
+
+nlohmann::json vector_json(const Eigen::Vector3d& v) {
+  return {v.x(), v.y(), v.z()};
+}
+
+nlohmann::json matrix_json(const Eigen::Matrix3d& m) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (int i = 0; i < 3; ++i) rows.push_back(vector_json(m.row(i).transpose()));
+  return rows;
+}
+
+nlohmann::json optional_json(const std::optional<double>& value) {
+  return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
+}
+
+nlohmann::json link_json(const LinkComparison& link, double tolerance, bool check) {
+  nlohmann::json out = {{"name", link.name}, {"geometries", link.geometries}};
+  out["stated"] = nullptr;
+  if (link.stated) {
+    const robot::StatedInertial& s = *link.stated;
+    out["stated"] = {{"mass", optional_json(s.mass)},
+                     {"center_of_mass", vector_json(s.center_of_mass)},
+                     {"inertia", s.inertia ? matrix_json(*s.inertia) : nlohmann::json(nullptr)},
+                     {"principal_moments",
+                      s.inertia ? vector_json(moments_of(*s.inertia)) : nlohmann::json(nullptr)}};
+  }
+  out["computed"] = nullptr;
+  if (const auto& c = link.result.computed) {
+    out["computed"] = {{"mass", c->mass},
+                       {"mass_from_density", link.result.mass_from_density},
+                       {"center_of_mass", vector_json(c->center_of_mass)},
+                       {"inertia", matrix_json(c->inertia)},
+                       {"principal_moments", vector_json(moments_of(c->inertia))}};
+  }
+  out["differences"] = {{"mass", optional_json(link.mass)},
+                        {"center_of_mass", optional_json(link.center_of_mass)},
+                        {"inertia", optional_json(link.inertia)},
+                        {"principal_moments", optional_json(link.moments)}};
+  out["problems"] = link.problems;
+  out["notes"] = link.notes;
+  out["error"] = link.result.error ? nlohmann::json(*link.result.error) : nlohmann::json(nullptr);
+  if (check) out["within_tolerance"] = within_tolerance(link, tolerance);
+  return out;
+}
+
+/// "\ncheck: 2 of 5 links differ by more than 0.001: 'turret', 'hand'\n".
+std::string check_summary(const std::vector<LinkComparison>& links, double tolerance) {
+  std::string names;
+  std::size_t failing = 0;
+  for (const LinkComparison& link : links) {
+    if (within_tolerance(link, tolerance)) continue;
+    names += std::string(failing++ ? ", '" : "'") + link.name + "'";
+  }
+  char bound[32];
+  std::snprintf(bound, sizeof bound, "%g", tolerance);
+  if (failing == 0) return "\ncheck: every link is within " + std::string(bound) + "\n";
+  return "\ncheck: " + std::to_string(failing) + " of " + std::to_string(links.size()) +
+         " links differ by more than " + bound + " or cannot be compared: " + names + "\n";
+}
+
+}  // namespace
+
+LinkComparison compare_link(const robot::Link& link, robot::LinkInertial result) {
+  LinkComparison out;
+  out.name = link.name;
+  out.geometries = link.geometries.size();
+  out.stated = link.stated;
+  out.result = std::move(result);
+  out.problems = stated_problems(link.stated);
+  out.notes = link.notes;
+  out.notes.insert(out.notes.end(), out.result.notes.begin(), out.result.notes.end());
+  if (!out.result.computed || !link.stated) return out;
+  const engine::MassProperties& c = *out.result.computed;
+  const robot::StatedInertial& s = *link.stated;
+  if (s.mass) out.mass = std::abs(*s.mass - c.mass) / c.mass;
+  const double size = std::sqrt(c.inertia.trace() / (2.0 * c.mass));
+  out.center_of_mass = (s.center_of_mass - c.center_of_mass).norm() / size;
+  if (s.inertia) {
+    out.inertia = (*s.inertia - c.inertia).norm() / c.inertia.norm();
+    const Eigen::Vector3d moments = moments_of(c.inertia);
+    out.moments = (moments_of(*s.inertia) - moments).norm() / moments.norm();
+  }
+  return out;
+}
+
+bool within_tolerance(const LinkComparison& link, double tolerance) {
+  if (link.result.error) return false;
+  if (!link.result.computed) return true;
+  if (!link.problems.empty() || !link.mass || !link.center_of_mass || !link.inertia) return false;
+  return *link.mass <= tolerance && *link.center_of_mass <= tolerance && *link.inertia <= tolerance;
+}
+
+std::string format_comparison(const robot::Robot& robot, const std::vector<LinkComparison>& links,
+                              const std::string& source, double tolerance, bool check) {
+  std::string out = robot.file.string() + " (" + format_name(robot.format) + ", " +
+                    std::to_string(links.size()) + " links, geometry from " + source + ")\n";
+  for (const LinkComparison& link : links) {
+    out += "\nlink '" + link.name + "': " + std::to_string(link.geometries) +
+           (link.geometries == 1 ? " geometry\n" : " geometries\n");
+    if (link.result.error) {
+      out += "  error: " + *link.result.error + "\n";
+      continue;
+    }
+    const auto* s = link.stated ? &*link.stated : nullptr;
+    const auto& c = link.result.computed;
+    out += row("", "stated",
+               c ? (link.result.mass_from_density ? "computed (density)" : "computed") : "computed",
+               "relative difference");
+    out += row("mass", s && s->mass ? numbers(Eigen::Matrix<double, 1, 1>(*s->mass)) : "-",
+               c ? numbers(Eigen::Matrix<double, 1, 1>(c->mass)) : "-",
+               relative(link.mass, tolerance, check));
+    const double size = c ? std::sqrt(c->inertia.trace() / (2.0 * c->mass)) : 0.0;
+    out += row("centre of mass", s ? numbers(s->center_of_mass, size) : "-",
+               c ? numbers(c->center_of_mass, std::max(size, c->center_of_mass.norm())) : "-",
+               relative(link.center_of_mass, tolerance, check));
+    out += row("moments", s && s->inertia ? numbers(moments_of(*s->inertia)) : "-",
+               c ? numbers(moments_of(c->inertia)) : "-", relative(link.moments, tolerance, false));
+    out += row("inertia xx yy zz", s && s->inertia ? numbers(s->inertia->diagonal()) : "-",
+               c ? numbers(c->inertia.diagonal()) : "-", "");
+    out += row("inertia xy xz yz",
+               s && s->inertia ? numbers(off_diagonal(*s->inertia), s->inertia->norm()) : "-",
+               c ? numbers(off_diagonal(c->inertia), c->inertia.norm()) : "-",
+               relative(link.inertia, tolerance, check));
+    for (const std::string& problem : link.problems) out += "  ! " + problem + "\n";
+    for (const std::string& note : link.notes) out += "  note: " + note + "\n";
+  }
+  if (check) out += check_summary(links, tolerance);
+  return out;
+}
+
+nlohmann::json comparison_to_json(const robot::Robot& robot,
+                                  const std::vector<LinkComparison>& links,
+                                  const std::string& source, double tolerance, bool check) {
+  nlohmann::json out = {{"file", robot.file.string()},
+                        {"format", format_name(robot.format)},
+                        {"from", source},
+                        {"links", nlohmann::json::array()}};
+  for (const LinkComparison& link : links)
+    out["links"].push_back(link_json(link, tolerance, check));
+  if (check) out["tolerance"] = tolerance;
+  return out;
+}
+
+}  // namespace tumble::app
