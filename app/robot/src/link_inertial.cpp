@@ -62,7 +62,8 @@ engine::MassProperties geometry_mass_properties(const Geometry& geometry, double
 LinkInertial compute_link_inertial(const Link& link, const ComputeOptions& options) {
   LinkInertial out;
   if (link.geometries.empty()) {
-    out.notes.push_back("no geometry: its inertial is kept as the file states it");
+    out.notes.push_back(link.stated ? "no geometry: its inertial is kept as the file states it"
+                                    : "no geometry and no inertial: nothing to compute");
     return out;
   }
   // The file's mass, when it is one (zero, negative or missing masses are flagged elsewhere).
