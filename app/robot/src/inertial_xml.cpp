@@ -97,11 +97,23 @@ std::string xml_number(double value) {
 }
 
 Eigen::Vector3d roll_pitch_yaw(const Eigen::Matrix3d& R) {
-  const double pitch = std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
-  if (std::abs(R(2, 0)) > 1.0 - 1e-12) {  // gimbal lock: only roll -+ yaw is defined
-    return {0.0, pitch, std::atan2(-R(0, 1), R(1, 1))};
-  }
-  return {std::atan2(R(2, 1), R(2, 2)), pitch, std::atan2(R(1, 0), R(0, 0))};
+  // Pitch from atan2, not asin(-R(2, 0)), which loses half the digits near +-pi/2. Near the
+  // lock, yaw from the first column is mostly rounding noise and only roll -+ yaw is defined,
+  // so roll is solved from what is left once yaw and pitch are undone, Rx(roll) =
+  // Ry(pitch)^T Rz(yaw)^T R: the angles then rebuild R to rounding at any pitch. At the lock
+  // itself (first column's xy below 1e-15: rebuilt to 3e-15 either way) yaw takes the
+  // whole turn and roll is zero.
+  const double cos_pitch = std::hypot(R(0, 0), R(1, 0));
+  const double pitch = std::atan2(-R(2, 0), cos_pitch);
+  const double yaw =
+      cos_pitch < 1e-15 ? std::atan2(-R(0, 1), R(1, 1)) : std::atan2(R(1, 0), R(0, 0));
+  const Eigen::Matrix3d rest = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+                                Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()))
+                                   .toRotationMatrix()
+                                   .transpose() *
+                               R;
+  const double roll = std::atan2(rest(2, 1) - rest(1, 2), rest(1, 1) + rest(2, 2));
+  return {roll, pitch, yaw};
 }
 
 Eigen::Matrix3d rotation_from_rpy(const Eigen::Vector3d& rpy) {
