@@ -31,7 +31,7 @@ TEST(InspectUnitHint, MillimetresAndInchesForLargeBodies) {
       Optional(std::string("size 111 m: millimetres? --scale 0.001; inches? --scale 0.0254")));
   // 2000 m is 50.8 m in inches: only millimetres fit.
   EXPECT_THAT(unit_hint(sized({2000, 1, 1}), kOnes),
-              Optional(std::string("size 2e+03 m: millimetres? --scale 0.001")));
+              Optional(std::string("size 2000 m: millimetres? --scale 0.001")));
   // 5e6 m: micrometres (5 m).
   EXPECT_THAT(unit_hint(sized({5e6, 1, 1}), kOnes),
               Optional(std::string("size 5e+06 m: micrometres? --scale 1e-06")));
