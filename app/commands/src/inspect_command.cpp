@@ -22,6 +22,7 @@
 namespace tumble::app {
 namespace {
 
+/// --format and its aliases, --frame.
 void add_output_options(CLI::App& inspect, InspectOptions& options) {
   const std::map<std::string, InspectFormat> formats = {
       {"text", InspectFormat::text}, {"json", InspectFormat::json}, {"jsonl", InspectFormat::jsonl},
@@ -52,6 +53,7 @@ void add_output_options(CLI::App& inspect, InspectOptions& options) {
       ->transform(CLI::CheckedTransformer(frames, CLI::ignore_case));
 }
 
+/// -r and --jobs.
 void add_batch_options(CLI::App& inspect, InspectOptions& options) {
   inspect.add_flag("-r,--recursive", options.recursive,
                    "Directories: take the mesh files below them too, not only directly inside");
@@ -81,6 +83,7 @@ InspectOutcome inspect_one(const InspectInput& input, const engine::MassOptions&
   return outcome;
 }
 
+/// The command: expand the inputs, inspect them on the jobs' threads, print in input order.
 int inspect(const InspectOptions& options, std::ostream& out, std::ostream& err) {
   bool batch = false;
   const std::vector<InspectInput> inputs =

@@ -16,6 +16,7 @@ namespace fs = std::filesystem;
 /// Lists nest at most this deep (a list naming itself would never end).
 constexpr int kMaxListDepth = 16;
 
+/// A directory's files, or `input` itself as a mesh file.
 void expand(const fs::path& input, bool recursive, std::vector<InspectInput>& out);
 
 /// The mesh files of `dir`, sorted; directly inside, or below when `recursive`.

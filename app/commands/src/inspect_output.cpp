@@ -10,6 +10,7 @@
 namespace tumble::app {
 namespace {
 
+/// The robot format of an XML output format.
 robot::RobotFormat robot_format(InspectFormat format) {
   switch (format) {
     case InspectFormat::sdf:

@@ -12,10 +12,12 @@ namespace {
 constexpr double kSmallest = 0.01;
 constexpr double kLargest = 10.0;
 
+/// Whether `length` (m) is a size a body is likely to have.
 bool plausible(double length) {
   return length >= kSmallest && length <= kLargest;
 }
 
+/// Four significant digits: "111", "2000", "0.0254", "1e-06".
 std::string number(double value) {
   std::array<char, 32> text{};
   std::snprintf(text.data(), text.size(), "%.4g", value);
