@@ -109,10 +109,13 @@ void expand(const fs::path& input, bool recursive, std::vector<InspectInput>& ou
 }  // namespace
 
 bool mesh_extension(const fs::path& file) {
-  static constexpr std::array<std::string_view, 31> kExtensions = {
-      "stl", "obj", "ply",   "off", "gltf", "glb", "fbx", "dae", "3ds", "3mf",     "amf",
-      "ac",  "ase", "blend", "dxf", "lwo",  "lws", "lxo", "md2", "md3", "md5mesh", "ms3d",
-      "nff", "q3o", "q3s",   "raw", "smd",  "x",   "x3d", "xgl", "zgl"};
+  // assimp 5.2's mesh formats (not its motion-capture ones, BVH and CSM, which hold no solid).
+  static constexpr std::array<std::string_view, 47> kExtensions = {
+      "3d",  "3ds", "3mf", "ac",   "acc",  "amf", "ase",     "b3d", "blend", "cob",
+      "dae", "dxf", "fbx", "glb",  "gltf", "hmp", "ifc",     "iqm", "irr",   "irrmesh",
+      "lwo", "lws", "lxo", "m3d",  "md2",  "md3", "md5mesh", "mdc", "mdl",   "ms3d",
+      "nff", "obj", "off", "ogex", "ply",  "q3o", "q3s",     "raw", "sib",   "smd",
+      "stl", "ter", "x",   "x3d",  "xgl",  "zae", "zgl"};
   std::string extension = file.extension().string();
   if (extension.size() < 2) return false;
   extension.erase(0, 1);

@@ -26,8 +26,9 @@ std::vector<InspectInput> expand_inspect_inputs(const std::vector<std::filesyste
                                                 bool recursive, bool& batch);
 
 /// Whether `file`'s extension (any case) is one of the mesh formats a directory's files are
-/// taken for: stl obj ply off gltf glb fbx dae 3ds 3mf amf ac ase blend dxf lwo lws lxo md2
-/// md3 md5mesh ms3d nff q3o q3s raw smd x x3d xgl zgl.
+/// taken for, assimp's mesh formats: 3d 3ds 3mf ac acc amf ase b3d blend cob dae dxf fbx glb gltf
+/// hmp ifc iqm irr irrmesh lwo lws lxo m3d md2 md3 md5mesh mdc mdl ms3d nff obj off ogex ply q3o
+/// q3s raw sib smd stl ter x x3d xgl zae zgl.
 bool mesh_extension(const std::filesystem::path& file);
 
 }  // namespace tumble::app
