@@ -130,7 +130,9 @@ std::vector<InspectInput> expand_inspect_inputs(const std::vector<fs::path>& inp
   for (const fs::path& input : inputs) {
     const std::string text = input.string();
     std::error_code error;
-    if (!text.empty() && text[0] == '@') {
+    if (text == "@") {
+      out.push_back({input, "@: expected the name of a list file after '@' (@LIST)"});
+    } else if (!text.empty() && text[0] == '@') {
       batch = true;
       expand_list(text.substr(1), recursive, 0, out);
     } else {

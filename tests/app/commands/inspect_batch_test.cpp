@@ -101,6 +101,17 @@ TEST_F(InspectBatch, MissingEntriesAreOneLineEachAndTheRestIsInspected) {
   EXPECT_THAT(run.out, HasSubstr(at("parts/b.stl")));
 }
 
+TEST_F(InspectBatch, AtSignAloneAndAFileNamedWithOne) {
+  const auto alone = run_inspect_args({"@"});
+  EXPECT_EQ(alone.status, 1);
+  EXPECT_EQ(alone.err,
+            "tumble inspect: error: @: expected the name of a list file after '@' (@LIST)\n");
+  // A mesh whose name starts with '@' is reached through its folder.
+  tumble::testing::write_box_binary_stl(at("@part.stl"), BoxMesh({1, 1, 1}));
+  const auto file = run_inspect_args({"--jsonl", (dir_ / "." / "@part.stl").string()});
+  EXPECT_EQ(file.status, 0) << file.err;
+}
+
 TEST_F(InspectBatch, ListNamingItselfEnds) {
   std::ofstream(at("loop.txt")) << "@loop.txt\n";
   const auto run = run_inspect_args({"@" + at("loop.txt")});

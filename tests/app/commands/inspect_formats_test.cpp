@@ -177,6 +177,19 @@ TEST_F(InspectFormats, SdfAndMjcfRoundTripExactly) {
   EXPECT_TRUE(principal.attribute("fullinertia").empty());
 }
 
+TEST_F(InspectFormats, FrameChangesOnlyTheXmlFormats) {
+  for (const char* format : {"json", "jsonl", "text"}) {
+    const auto mesh = run_inspect_args({"--format", format, file()});
+    const auto principal = run_inspect_args({"--format", format, "--frame", "principal", file()});
+    EXPECT_EQ(mesh.out, principal.out) << format;
+  }
+  const auto mesh = run_inspect_args({"--format", "urdf", file()});
+  const auto principal = run_inspect_args({"--format", "urdf", "--frame", "principal", file()});
+  EXPECT_NE(mesh.out, principal.out);
+  EXPECT_EQ(run_inspect_args({"--frame", "body", file()}).status, 1);
+  EXPECT_EQ(run_inspect_args({"--format", "yaml", file()}).status, 1);
+}
+
 TEST_F(InspectFormats, SeveralFilesAreHeadedByComments) {
   tumble::testing::write_box_ascii_stl(dir_ / "a--b-.stl", BoxMesh({1, 1, 1}));
   const auto run = run_inspect_args({"--format", "urdf", file(), (dir_ / "a--b-.stl").string()});
