@@ -32,11 +32,14 @@ void expand_directory(const fs::path& dir, bool recursive, std::vector<InspectIn
     }
   };
   if (recursive) {
-    fs::recursive_directory_iterator it(dir, error), end;
+    // A sub-directory tumble may not read is left out, not the whole tree.
+    fs::recursive_directory_iterator it(dir, fs::directory_options::skip_permission_denied, error),
+        end;
     for (; !error && it != end; it.increment(error)) {
       // Hidden directories (.git, .cache) are not descended into.
       const std::string name = it->path().filename().string();
-      if (!name.empty() && name[0] == '.' && it->is_directory(error)) {
+      std::error_code ignored;
+      if (!name.empty() && name[0] == '.' && it->is_directory(ignored)) {
         it.disable_recursion_pending();
         continue;
       }

@@ -17,11 +17,12 @@ struct InspectInput {
 
 /// The inputs' files in order. A directory gives the files directly inside it (with
 /// `recursive`, below it too) whose extension is one assimp reads (mesh_extension), sorted by
-/// path; hidden entries (".name") are skipped, and a directory without any is an error. "@LIST"
-/// gives the paths listed in LIST, one a line, relative to LIST's folder unless absolute; blank
-/// lines and lines starting with '#' are skipped, and a listed directory or list is expanded in
-/// turn. Anything else is taken as a mesh file (a missing one fails when inspected). `batch` is set
-/// when a directory or a list was given, so that the JSON report is an array even of one file.
+/// path; hidden entries (".name") and sub-directories tumble may not read are skipped, and a
+/// directory without any is an error. "@LIST" gives the paths listed in LIST, one a line, relative
+/// to LIST's folder unless absolute; blank lines and lines starting with '#' are skipped, and a
+/// listed directory or list is expanded in turn. Anything else is taken as a mesh file (a missing
+/// one fails when inspected). `batch` is set when a directory or a list was given, so that the JSON
+/// report is an array even of one file.
 std::vector<InspectInput> expand_inspect_inputs(const std::vector<std::filesystem::path>& inputs,
                                                 bool recursive, bool& batch);
 

@@ -2,6 +2,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <fstream>
 #include <sstream>
 
@@ -68,6 +70,17 @@ TEST_F(InspectBatch, RecursiveDescendsButNotIntoHiddenFolders) {
     EXPECT_THAT(files_of(run.out), ElementsAre(at("parts/C.PLY"), at("parts/a.obj"),
                                                at("parts/b.stl"), at("parts/sub/d.stl")));
   }
+}
+
+TEST_F(InspectBatch, UnreadableSubDirectoryIsLeftOut) {
+  if (::geteuid() == 0) GTEST_SKIP() << "root reads every directory";
+  fs::create_directories(dir_ / "parts" / "locked");
+  tumble::testing::write_box_binary_stl(at("parts/locked/e.stl"), BoxMesh({1, 1, 1}));
+  fs::permissions(dir_ / "parts" / "locked", fs::perms::none);
+  const auto run = run_inspect_args({"--jsonl", "-r", at("parts")});
+  fs::permissions(dir_ / "parts" / "locked", fs::perms::owner_all);
+  EXPECT_EQ(run.status, 0) << run.err;
+  EXPECT_EQ(files_of(run.out).size(), 4u) << run.out;
 }
 
 TEST_F(InspectBatch, ListFileWithCommentsAndRelativePaths) {
