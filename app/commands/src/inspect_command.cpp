@@ -29,12 +29,14 @@ void add_output_options(CLI::App& inspect, InspectOptions& options) {
       {"urdf", InspectFormat::urdf}, {"sdf", InspectFormat::sdf},   {"mjcf", InspectFormat::mjcf}};
   auto* format =
       inspect
-          .add_option("--format", options.format,
-                      "text (the table, default); json (one object, an array for a batch; "
-                      "nothing unless every file succeeds); jsonl (one object a line per "
-                      "file as it finishes, errors as {\"file\", \"error\"}); urdf, sdf, mjcf "
-                      "(the inertial element)")
-          ->transform(CLI::CheckedTransformer(formats, CLI::ignore_case));
+          .add_option_function<std::string>(
+              "--format",
+              [&options, formats](const std::string& name) { options.format = formats.at(name); },
+              "text (the table, default); json (one object, an array for a batch; nothing "
+              "unless every file succeeds); jsonl (one object a line per file as it finishes, "
+              "errors as {\"file\", \"error\"}); urdf, sdf, mjcf (the inertial element)")
+          ->transform(CLI::IsMember(formats, CLI::ignore_case))
+          ->option_text("text|json|jsonl|urdf|sdf|mjcf");
   inspect
       .add_flag_callback(
           "--json", [&] { options.format = InspectFormat::json; }, "Same as --format json")
@@ -46,11 +48,14 @@ void add_output_options(CLI::App& inspect, InspectOptions& options) {
   const std::map<std::string, robot::InertialFrame> frames = {
       {"mesh", robot::InertialFrame::mesh}, {"principal", robot::InertialFrame::principal}};
   inspect
-      .add_option("--frame", options.frame,
-                  "Frame of the urdf/sdf/mjcf inertia: mesh (the file's axes, rotation zero, all "
-                  "six elements; default) or principal (the principal axes' rotation and "
-                  "moments); json has both and ignores it")
-      ->transform(CLI::CheckedTransformer(frames, CLI::ignore_case));
+      .add_option_function<std::string>(
+          "--frame",
+          [&options, frames](const std::string& name) { options.frame = frames.at(name); },
+          "Frame of the urdf/sdf/mjcf inertia: mesh (the file's axes, rotation zero, all six "
+          "elements; default) or principal (the principal axes' rotation and moments); json "
+          "has both and ignores it")
+      ->transform(CLI::IsMember(frames, CLI::ignore_case))
+      ->option_text("mesh|principal");
 }
 
 /// -r and --jobs.
