@@ -31,6 +31,7 @@
 #include <cmath>
 #include <csignal>
 #include <fstream>
+#include <mutex>
 #include <new>
 #include <string>
 #include <system_error>
@@ -332,6 +333,13 @@ TriangleMesh run_isolated(const std::filesystem::path& file, const ImportLimits&
     return std::system_error(errno, std::generic_category(),
                              "cannot start reading " + file.string() + " (" + call + ")");
   };
+  // One fork at a time: a child forked by another thread between this thread's pipe2 and its
+  // close(pipe[1]) below would inherit the write end, and this read would wait for that child
+  // to end too. The lock is the parent's; the child (a copy of this thread only) never takes
+  // it, nor any other lock a thread of the parent might hold but malloc's, which glibc's fork
+  // takes and releases around the copy.
+  static std::mutex fork_mutex;
+  std::unique_lock fork_lock(fork_mutex);
   const int message = ::memfd_create("tumble-import", MFD_CLOEXEC);
   if (message < 0) throw cannot_start("memfd_create");
   std::array<int, 2> pipe{};
@@ -352,6 +360,7 @@ TriangleMesh run_isolated(const std::filesystem::path& file, const ImportLimits&
     child_main(message, parent, limits, work);
   }
   ::close(pipe[1]);
+  fork_lock.unlock();
   return receive(file, limits, what, stats, pipe[0], message, child);
 }
 

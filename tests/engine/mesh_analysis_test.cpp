@@ -204,6 +204,45 @@ TEST(MeshChecks, AllFacesInvertedAreFlippedWithAWarning) {
   expect_inertia_near(report.mass_properties.inertia, box_inertia(2.0, size));
 }
 
+TEST(MeshAnalysisScale, NegativeFactorMirrorsWithoutFlipping) {
+  // A turned box off the origin (products of inertia non-zero), mirrored in x, then scaled
+  // per axis: the closed form of its image under diag(scale) (volume element |det|).
+  const Eigen::Matrix3d turn =
+      Eigen::AngleAxisd(0.6, Eigen::Vector3d(1, -2, 2).normalized()).toRotationMatrix();
+  const Eigen::Vector3d centre(1.0, 2.0, 3.0);
+  const Eigen::Vector3d size(0.5, 1.5, 2.5);
+  TriangleMesh mesh = box_mesh(size);
+  transform_mesh(mesh, turn, centre);
+  const mesh_fixtures::SolidMoments solid =
+      mesh_fixtures::box_moments(-size / 2, size / 2).transformed(turn, centre);
+  for (const Eigen::Vector3d& scale :
+       {Eigen::Vector3d(-1, 1, 1), Eigen::Vector3d(-1, 2, 0.5), Eigen::Vector3d(-1, -1, -1)}) {
+    MassOptions options = with_density(2.0);
+    options.scale = scale;
+    const MeshReport report = analyze_mesh(mesh, options, "mirrored.stl");
+    const mesh_fixtures::SolidMoments expected =
+        solid.transformed(scale.asDiagonal(), Eigen::Vector3d::Zero());
+    EXPECT_FALSE(report.flipped) << scale.transpose();
+    EXPECT_THAT(report.warnings, IsEmpty());
+    EXPECT_GT(report.volume, 0.0);
+    EXPECT_NEAR(report.volume, std::abs(scale.prod()) * size.prod(), kExact * report.volume);
+    expect_vector_near(report.mass_properties.center_of_mass, expected.center_of_mass(), 1e-13);
+    expect_inertia_near(report.mass_properties.inertia, expected.inertia(2.0));
+  }
+  // The pure mirror negates the centre's x and the products with x, and keeps the rest.
+  MassOptions mirror = with_density(2.0);
+  mirror.scale = {-1, 1, 1};
+  const MeshReport plain = analyze_mesh(mesh, with_density(2.0), "plain.stl");
+  const MeshReport mirrored = analyze_mesh(mesh, mirror, "mirrored.stl");
+  const Eigen::Matrix3d& I = plain.mass_properties.inertia;
+  const Eigen::Matrix3d& J = mirrored.mass_properties.inertia;
+  EXPECT_GT(std::abs(I(0, 1)), 1e-3 * largest_moment(I));
+  const Eigen::Matrix3d sign = Eigen::Vector3d(-1, 1, 1).asDiagonal();
+  expect_inertia_near(J, sign * I * sign);
+  EXPECT_NEAR(mirrored.mass_properties.center_of_mass.x(),
+              -plain.mass_properties.center_of_mass.x(), 1e-14);
+}
+
 TEST(MeshChecks, DegenerateTrianglesAreSkippedAndCounted) {
   const Eigen::Vector3d size(1.0, 2.0, 3.0);
   TriangleMesh mesh = box_mesh(size);

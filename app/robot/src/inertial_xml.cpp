@@ -5,7 +5,6 @@
 #include <array>
 #include <charconv>
 #include <cmath>
-#include <limits>
 
 #include <Eigen/Geometry>
 
@@ -98,18 +97,23 @@ std::string xml_number(double value) {
 }
 
 Eigen::Vector3d roll_pitch_yaw(const Eigen::Matrix3d& R) {
-  // Pitch from atan2, not asin(-R(2,0)): near +-pi/2 the asin of a rounded sine is off by up to
-  // 1e-8 rad. Roll follows from the yaw found (M. Day, "Extracting Euler angles from a rotation
-  // matrix"), so that the three read back as R even where yaw itself is poorly conditioned.
+  // Pitch from atan2, not asin(-R(2, 0)), which loses half the digits near +-pi/2. Near the
+  // lock, yaw from the first column is mostly rounding noise and only roll -+ yaw is defined,
+  // so roll is solved from what is left once yaw and pitch are undone, Rx(roll) =
+  // Ry(pitch)^T Rz(yaw)^T R: the angles then rebuild R to rounding at any pitch. At the lock
+  // itself (first column's xy below 1e-15: rebuilt to 3e-15 either way) yaw takes the
+  // whole turn and roll is zero.
   const double cos_pitch = std::hypot(R(0, 0), R(1, 0));
   const double pitch = std::atan2(-R(2, 0), cos_pitch);
-  // At gimbal lock (cos pitch down to rounding) only roll -+ yaw is defined: the yaw is the one
-  // that leaves no roll. Any larger cos pitch still carries the yaw.
-  const double yaw = cos_pitch < 4 * std::numeric_limits<double>::epsilon()
-                         ? std::atan2(-R(0, 1), R(1, 1))
-                         : std::atan2(R(1, 0), R(0, 0));
-  const double s = std::sin(yaw), c = std::cos(yaw);
-  return {std::atan2(s * R(0, 2) - c * R(1, 2), c * R(1, 1) - s * R(0, 1)), pitch, yaw};
+  const double yaw =
+      cos_pitch < 1e-15 ? std::atan2(-R(0, 1), R(1, 1)) : std::atan2(R(1, 0), R(0, 0));
+  const Eigen::Matrix3d rest = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+                                Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()))
+                                   .toRotationMatrix()
+                                   .transpose() *
+                               R;
+  const double roll = std::atan2(rest(2, 1) - rest(1, 2), rest(1, 1) + rest(2, 2));
+  return {roll, pitch, yaw};
 }
 
 Eigen::Matrix3d rotation_from_rpy(const Eigen::Vector3d& rpy) {

@@ -33,8 +33,8 @@ std::string inertial_element(RobotFormat format, const engine::MassProperties& p
 std::string xml_number(double value);
 
 /// Roll, pitch, yaw (URDF and SDF: fixed axes x, then y, then z, R = Rz(yaw) Ry(pitch)
-/// Rx(roll)) of a rotation matrix, reading back as it to rounding; at pitch +-pi/2 the yaw is
-/// chosen so that the roll is zero (to rounding).
+/// Rx(roll)) of a rotation matrix, rebuilding it to rounding at any pitch; at pitch +-pi/2
+/// the roll is taken as zero.
 Eigen::Vector3d roll_pitch_yaw(const Eigen::Matrix3d& rotation);
 
 /// The rotation of roll, pitch, yaw (the inverse of roll_pitch_yaw).
