@@ -152,14 +152,9 @@ class MjcfAgainstMujoco : public ::testing::Test {
     return agreement;
   }
 
-  void expect_close(const Agreement& agreement, const std::string& what,
-                    double tolerance = kTolerance) {
-    std::cout << "[ MuJoCo   ] " << what << ": largest relative difference " << agreement.text()
-              << "\n";
-    EXPECT_LT(agreement.mass, tolerance) << what;
-    EXPECT_LT(agreement.center_of_mass, tolerance) << what;
-    EXPECT_LT(agreement.moments, tolerance) << what;
-    EXPECT_LT(agreement.tensor, kTensorTolerance) << what;
+  static void expect_close(const Agreement& agreement, const std::string& what,
+                           double tolerance = kTolerance) {
+    tumble::testing::expect_agreement(agreement, what, tolerance, kTensorTolerance);
   }
 
   std::filesystem::path folder_;

@@ -2,6 +2,7 @@
 // MuJoCo as the independent check of the MJCF reader: each body's mass, centre of mass and
 // principal moments as mj_loadXML compiles them, next to tumble's for the same file.
 
+#include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -112,5 +114,18 @@ struct Agreement {
     return buffer;
   }
 };
+
+/// Prints the agreement (the README's table quotes these lines) and expects mass, centre of
+/// mass and moments within `tolerance`, the tensor in the body's axes within
+/// `tensor_tolerance` (MuJoCo's own eigen decomposition limits it to about 1e-7).
+inline void expect_agreement(const Agreement& agreement, const std::string& what, double tolerance,
+                             double tensor_tolerance) {
+  std::cout << "[ MuJoCo   ] " << what << ": largest relative difference " << agreement.text()
+            << "\n";
+  EXPECT_LT(agreement.mass, tolerance) << what;
+  EXPECT_LT(agreement.center_of_mass, tolerance) << what;
+  EXPECT_LT(agreement.moments, tolerance) << what;
+  EXPECT_LT(agreement.tensor, tensor_tolerance) << what;
+}
 
 }  // namespace tumble::testing

@@ -130,12 +130,7 @@ class UrdfAgainstMujoco : public ::testing::Test {
   }
 
   static void expect_close(const Agreement& agreement, const std::string& what) {
-    std::cout << "[ MuJoCo   ] " << what << ": largest relative difference " << agreement.text()
-              << "\n";
-    EXPECT_LT(agreement.mass, kTolerance) << what;
-    EXPECT_LT(agreement.center_of_mass, kTolerance) << what;
-    EXPECT_LT(agreement.moments, kTolerance) << what;
-    EXPECT_LT(agreement.tensor, kTensorTolerance) << what;
+    tumble::testing::expect_agreement(agreement, what, kTolerance, kTensorTolerance);
   }
 
   std::filesystem::path folder_;
