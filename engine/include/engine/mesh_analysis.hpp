@@ -16,8 +16,8 @@ namespace tumble::engine {
 
 /// How to turn a mesh's geometry into matter.
 struct MassOptions {
-  std::optional<double> density;          ///< kg/m^3; the default is 1000 (water)
-  std::optional<double> mass;             ///< kg, total; excludes `density`
+  std::optional<double> density;  ///< kg/m^3; the default is 1000 (water)
+  std::optional<double> mass;     ///< kg, total; excludes `density`
   /// File units to metres per axis (0.001 for millimetres), as URDF's <mesh scale="x y z">.
   /// Each factor is finite and non-zero; a negative one mirrors along its axis, and when the
   /// product is negative the winding is reversed so the faces still point outward.
