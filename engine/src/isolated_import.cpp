@@ -33,27 +33,14 @@
 #include <fstream>
 #include <mutex>
 #include <new>
+#include <optional>
 #include <string>
 #include <system_error>
 
 #include "engine/input_error.hpp"
 
-#if defined(__SANITIZE_ADDRESS__)
-#define TUMBLE_ADDRESS_SANITIZER 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define TUMBLE_ADDRESS_SANITIZER 1
-#endif
-#endif
-
 namespace tumble::engine::detail {
 namespace {
-
-enum Tag : std::uint8_t { kMesh = 1, kInputError = 2, kOutOfMemory = 3, kFailure = 4 };
-
-/// The child's exit status when it cannot write its answer (no memory left for the file, or a
-/// file size limit).
-constexpr int kCannotAnswer = 3;
 
 constexpr std::uint64_t kMiB = std::uint64_t{1} << 20;
 constexpr std::uint64_t kGiB = std::uint64_t{1} << 30;
@@ -133,19 +120,7 @@ void send_mesh(const PipeWriter& out, const TriangleMesh& mesh, const ImportStat
   out.bytes(mesh.triangles.data(), mesh.triangles.size() * sizeof(mesh.triangles[0]));
 }
 
-#ifndef TUMBLE_ADDRESS_SANITIZER
-/// The child's address space now, to which the memory budget is added.
-std::uint64_t current_address_space() {
-  std::ifstream statm("/proc/self/statm");
-  std::uint64_t pages = 0;
-  statm >> pages;
-  return pages * static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
-}
-#endif
-
 void set_child_limits(const ImportLimits& limits) {
-  const rlimit no_core{0, 0};
-  ::setrlimit(RLIMIT_CORE, &no_core);
   // The soft limit sends SIGXCPU, which ends the child; the hard one a second later, SIGKILL.
   const auto seconds = static_cast<rlim_t>(std::ceil(limits.cpu_seconds));
   const rlimit cpu{seconds, seconds + 1};
@@ -162,34 +137,9 @@ void set_child_limits(const ImportLimits& limits) {
                              const std::function<TriangleMesh(ImportStats&)>& work) {
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);
   if (::getppid() != parent) ::_exit(4);  // the parent died before the line above
-  // Ctrl+C reaches the whole process group: the child then simply ends, and the parent,
-  // which saw the signal too, reports the interruption. A crash ends the child by its signal,
-  // which the parent names: handlers inherited from the parent (a sanitizer's, a fuzzer's)
-  // would report a fault of assimp's as tumble's own, at length, and save crash inputs from
-  // inside the child. SIGXFSZ is the parent's choice (ignored: a write past a file size limit
-  // fails), kept.
-  for (const int signal : {SIGINT, SIGTERM, SIGPIPE, SIGXCPU, SIGSEGV, SIGBUS, SIGFPE, SIGILL}) {
-    std::signal(signal, SIG_DFL);
-  }
+  reset_child_signals();
   set_child_limits(limits);
-  const PipeWriter out{fd};
-  try {
-    ImportStats stats;
-    const TriangleMesh mesh = work(stats);
-    send_mesh(out, mesh, stats);
-  } catch (const InputError& error) {
-    out.u8(kInputError);
-    out.text(error.what());
-  } catch (const std::bad_alloc&) {
-    out.u8(kOutOfMemory);
-    out.text("");
-  } catch (const std::exception& error) {
-    out.u8(kFailure);
-    out.text(error.what());
-  } catch (...) {
-    out.u8(kFailure);
-    out.text("an unknown exception");
-  }
+  answer(fd, work);
   ::_exit(0);
 }
 
@@ -261,23 +211,93 @@ bool wait_for_end(int pipe, double seconds) {
   }
 }
 
-/// The parent's side of run_isolated once the child runs: wait for it, reap it, read its
-/// answer from `message`, judge.
+/// The parent's side of run_isolated once the child runs: wait for it, reap it, judge.
 TriangleMesh receive(const std::filesystem::path& file, const ImportLimits& limits,
                      const char* what, ImportStats& stats, int pipe, int message, pid_t child) {
   const bool timed_out = !wait_for_end(pipe, 2.0 * limits.cpu_seconds + 10.0);
   if (timed_out) ::kill(child, SIGKILL);
-  int status = 0;
-  rusage usage{};
-  while (::wait4(child, &status, 0, &usage) < 0 && errno == EINTR) {
-  }
-  const double cpu_seconds =
-      static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-      1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
   ::close(pipe);
+  const ChildEnd end = reap(child, timed_out);
+  try {
+    TriangleMesh mesh = judge_answer(file, limits, what, stats, message, end);
+    ::close(message);
+    return mesh;
+  } catch (...) {
+    ::close(message);
+    throw;
+  }
+}
+
+}  // namespace
+
+std::mutex& import_fork_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
+void reset_child_signals() {
+  const rlimit no_core{0, 0};
+  ::setrlimit(RLIMIT_CORE, &no_core);
+  // Ctrl+C reaches the whole process group: the child then simply ends, and the parent,
+  // which saw the signal too, reports the interruption. A crash ends the child by its signal,
+  // which the parent names: handlers inherited from the parent (a sanitizer's, a fuzzer's)
+  // would report a fault of assimp's as tumble's own, at length, and save crash inputs from
+  // inside the child. SIGXFSZ is the parent's choice (ignored: a write past a file size limit
+  // fails), kept.
+  for (const int signal : {SIGINT, SIGTERM, SIGPIPE, SIGXCPU, SIGSEGV, SIGBUS, SIGFPE, SIGILL}) {
+    std::signal(signal, SIG_DFL);
+  }
+}
+
+std::uint64_t current_address_space() {
+  std::ifstream statm("/proc/self/statm");
+  std::uint64_t pages = 0;
+  statm >> pages;
+  return pages * static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
+}
+
+std::uint8_t answer(int fd, const std::function<TriangleMesh(ImportStats&)>& work) {
+  const PipeWriter out{fd};
+  try {
+    ImportStats stats;
+    const TriangleMesh mesh = work(stats);
+    send_mesh(out, mesh, stats);
+    return kMesh;
+  } catch (const InputError& error) {
+    out.u8(kInputError);
+    out.text(error.what());
+    return kInputError;
+  } catch (const std::bad_alloc&) {
+    out.u8(kOutOfMemory);
+    out.text("");
+    return kOutOfMemory;
+  } catch (const std::exception& error) {
+    out.u8(kFailure);
+    out.text(error.what());
+  } catch (...) {
+    out.u8(kFailure);
+    out.text("an unknown exception");
+  }
+  return kFailure;
+}
+
+ChildEnd reap(pid_t child, bool timed_out) {
+  ChildEnd end;
+  end.timed_out = timed_out;
+  rusage usage{};
+  while (::wait4(child, &end.status, 0, &usage) < 0 && errno == EINTR) {
+  }
+  end.cpu_seconds = static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+                    1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+  return end;
+}
+
+TriangleMesh judge_answer(const std::filesystem::path& file, const ImportLimits& limits,
+                          const char* what, ImportStats& stats, int message,
+                          const std::optional<ChildEnd>& end) {
   ::lseek(message, 0, SEEK_SET);
   MessageReader in{message};
-  in.short_read = timed_out;
+  in.short_read = end && end->timed_out;
   TriangleMesh mesh;
   std::string text;
   const std::uint8_t tag = in.u8();
@@ -297,11 +317,13 @@ TriangleMesh receive(const std::filesystem::path& file, const ImportLimits& limi
   } else if (!in.short_read) {
     text = in.text();
   }
-  ::close(message);
 
   const std::string name = file.string();
-  if (in.short_read)
-    throw InputError(name + ": " + describe_end(status, timed_out, cpu_seconds, limits, what));
+  if (in.short_read) {
+    const ChildEnd ended = end.value_or(ChildEnd{});
+    throw InputError(name + ": " +
+                     describe_end(ended.status, ended.timed_out, ended.cpu_seconds, limits, what));
+  }
   if (tag == kMesh) return mesh;
   if (tag == kInputError) throw InputError(text);
   if (tag == kOutOfMemory) {
@@ -310,8 +332,6 @@ TriangleMesh receive(const std::filesystem::path& file, const ImportLimits& limi
   }
   throw InputError(name + ": " + what + " failed reading it (" + text + ")");
 }
-
-}  // namespace
 
 ImportLimits effective_limits(const ImportLimits& requested, std::uintmax_t size) {
   ImportLimits limits = requested;
@@ -338,8 +358,7 @@ TriangleMesh run_isolated(const std::filesystem::path& file, const ImportLimits&
   // to end too. The lock is the parent's; the child (a copy of this thread only) never takes
   // it, nor any other lock a thread of the parent might hold but malloc's, which glibc's fork
   // takes and releases around the copy.
-  static std::mutex fork_mutex;
-  std::unique_lock fork_lock(fork_mutex);
+  std::unique_lock fork_lock(import_fork_mutex());
   const int message = ::memfd_create("tumble-import", MFD_CLOEXEC);
   if (message < 0) throw cannot_start("memfd_create");
   std::array<int, 2> pipe{};

@@ -23,10 +23,12 @@
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <vector>
 
 #include "binary_stl.hpp"
 #include "declared_counts.hpp"
 #include "engine/input_error.hpp"
+#include "import_worker.hpp"
 #include "isolated_import.hpp"
 #include "split_in_two.hpp"
 #include "vertex_welding.hpp"
@@ -358,6 +360,14 @@ TriangleMesh import_with_assimp(const std::filesystem::path& file,
   return mesh;
 }
 
+/// The worker's side of import_mesh (a WorkerTask): the request is the file's path, then,
+/// when its face count was declared, the count and where it was declared.
+TriangleMesh import_request(const std::vector<std::string>& request, ImportStats& stats) {
+  std::optional<detail::DeclaredFaces> declared;
+  if (request.size() == 3) declared = detail::DeclaredFaces{std::stoull(request[1]), request[2]};
+  return import_with_assimp(request.at(0), declared, stats);
+}
+
 }  // namespace
 
 TriangleMesh import_mesh(const std::filesystem::path& file, ImportStats* stats,
@@ -380,10 +390,12 @@ TriangleMesh import_mesh(const std::filesystem::path& file, ImportStats* stats,
     // What the header declares is checked before assimp trusts it (declared_counts.hpp).
     detail::check_binary_stl_size(file, size);
     const std::optional<detail::DeclaredFaces> declared = detail::check_declared_counts(file, size);
-    // assimp reads in a child process under limits (isolated_import.hpp).
-    mesh = detail::run_isolated(
-        file, detail::effective_limits(limits, size), "assimp", *stats,
-        [&](ImportStats& child_stats) { return import_with_assimp(file, declared, child_stats); });
+    // assimp reads in this thread's import worker, under limits (import_worker.hpp).
+    std::vector<std::string> request{file.string()};
+    if (declared)
+      request.insert(request.end(), {std::to_string(declared->faces), declared->source});
+    mesh = detail::run_in_worker(file, detail::effective_limits(limits, size), "assimp", *stats,
+                                 import_request, request);
   }
   if (mesh.triangles.empty()) fail(file, "contains no triangles");
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {

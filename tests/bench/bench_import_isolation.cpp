@@ -3,12 +3,19 @@
 //
 //   BM_IsolatedRoundTrip/12        a 12-triangle cube back from the child: fork, pipe, reap
 //   BM_IsolatedRoundTrip/1000000   the 1M-triangle torus (500k vertices, 24 MB) back
+//   BM_WorkerRoundTrip/12          the cube back from this thread's persistent import worker
+//                                  (import_worker.hpp): request, answer, no fork
+//   BM_WorkerRoundTrip/1000000     the torus back from the worker
 //   BM_InProcessCopy/1000000       the same mesh copied in one process, for comparison
 // Compare with BM_InspectStlThroughAssimp (bench_mass_properties): assimp reading and tumble
 // inspecting a 1M-triangle file.
 #include <benchmark/benchmark.h>
 
+#include <string>
+#include <vector>
+
 #include "engine/primitive_meshes.hpp"
+#include "import_worker.hpp"
 #include "isolated_import.hpp"
 
 namespace {
@@ -37,6 +44,25 @@ BENCHMARK(BM_IsolatedRoundTrip)
     ->Arg(1000000)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+
+/// The worker's side of BM_WorkerRoundTrip: request[0] is the triangle count.
+engine::TriangleMesh mesh_task(const std::vector<std::string>& request, engine::ImportStats&) {
+  return mesh_of(std::stoll(request.at(0)));
+}
+
+void BM_WorkerRoundTrip(benchmark::State& state) {
+  const std::vector<std::string> request{std::to_string(state.range(0))};
+  for (auto _ : state) {
+    engine::ImportStats stats;
+    const engine::TriangleMesh got = engine::detail::run_in_worker(
+        "bench.obj", engine::ImportLimits{10.0, std::uint64_t{4} << 30}, "assimp", stats, mesh_task,
+        request);
+    benchmark::DoNotOptimize(got.triangles.data());
+  }
+  engine::detail::stop_import_worker();
+  state.counters["triangles"] = static_cast<double>(mesh_of(state.range(0)).triangles.size());
+}
+BENCHMARK(BM_WorkerRoundTrip)->Arg(12)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_InProcessCopy(benchmark::State& state) {
   const engine::TriangleMesh& mesh = mesh_of(state.range(0));
