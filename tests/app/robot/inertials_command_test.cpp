@@ -233,7 +233,8 @@ TEST_F(InertialsCommand, RoundTripKeepsEveryOtherByteAndChecksClean) {
               after.text.substr(now.begin, now.end - now.begin));
     const auto check = inertials("--check --tolerance 1e-9 --json " + path("out.urdf"));
     EXPECT_EQ(check.status, 0) << check.out;
-    for (const auto& link : nlohmann::json::parse(check.out)["links"]) {
+    const nlohmann::json report = nlohmann::json::parse(check.out);
+    for (const auto& link : report["links"]) {
       EXPECT_TRUE(link["within_tolerance"].get<bool>()) << link.dump();
       if (link["differences"]["inertia"].is_null()) continue;
       EXPECT_LE(link["differences"]["inertia"].get<double>(), 1e-12) << link.dump();
