@@ -297,6 +297,12 @@ TEST(ImportWorker, TheWorkerFollowsTheWorkingDirectory) {
 }
 
 TEST(ImportWorker, NoWorkerOutlivesItsThread) {
+#ifdef TUMBLE_ADDRESS_SANITIZER
+  // Under AddressSanitizer a worker forked while the other thread is inside the sanitizer's
+  // runtime once hung until the wall-clock backstop (CI, GCC 12's libasan): its locks are not
+  // all reset in a fork's child. glibc's malloc locks are, so the plain build runs this test.
+  GTEST_SKIP() << "forking from one of two busy threads can hang under AddressSanitizer";
+#endif
   mesh_fixtures::TempDir dir;
   const std::vector<std::filesystem::path> files = assorted_files(dir);
   stop_import_worker();
