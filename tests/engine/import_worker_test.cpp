@@ -104,6 +104,8 @@ std::vector<pid_t> children() {
   return found;
 }
 
+using mesh_fixtures::fuzz_input_as_file;
+
 TEST(ImportWorker, ManyAnswersArriveBitForBitFromOneWorker) {
   stop_import_worker();
   ImportStats first_stats;
@@ -197,20 +199,6 @@ TEST(ImportWorker, AWorkerIsReplacedAfterItsShareOfFiles) {
 }
 
 // --- import_mesh through the workers
-
-/// A fuzz input of the mesh_import target as a file: its first byte chose the extension.
-std::filesystem::path fuzz_input_as_file(const std::string& name,
-                                         const mesh_fixtures::TempDir& dir) {
-  std::ifstream in(
-      std::filesystem::path(TUMBLE_SOURCE_DIR) / "tests/fuzz/corpus/mesh_import" / name,
-      std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (bytes.empty()) throw std::runtime_error("missing fuzz input " + name);
-  const char* extensions[] = {".stl", ".obj", ".ply", ".off"};
-  const auto file = dir / (name + extensions[static_cast<unsigned char>(bytes[0]) % 4]);
-  mesh_fixtures::write_file(file, bytes.substr(1));
-  return file;
-}
 
 /// Files of several formats and sizes for assimp.
 std::vector<std::filesystem::path> assorted_files(const mesh_fixtures::TempDir& dir) {

@@ -43,6 +43,8 @@ ImportLimits short_limits() {
   return ImportLimits{1.0, std::uint64_t{256} << 20};
 }
 
+using mesh_fixtures::fuzz_input_as_file;
+
 TEST(IsolatedImport, TheChildsMeshAndStatsArriveBitForBit) {
   TriangleMesh sent;
   for (int i = 0; i < 100000; ++i) {  // 2.4 MB of positions: more than a pipe's buffer
@@ -188,20 +190,6 @@ TEST(IsolatedImport, DefaultLimitsGrowWithTheFile) {
 }
 
 // --- assimp's own faults, through import_mesh
-
-/// A fuzz input of the mesh_import target as a file: its first byte chose the extension.
-std::filesystem::path fuzz_input_as_file(const std::string& name,
-                                         const mesh_fixtures::TempDir& dir) {
-  std::ifstream in(
-      std::filesystem::path(TUMBLE_SOURCE_DIR) / "tests/fuzz/corpus/mesh_import" / name,
-      std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (bytes.empty()) throw std::runtime_error("missing fuzz input " + name);
-  const char* extensions[] = {".stl", ".obj", ".ply", ".off"};
-  const auto file = dir / (name + extensions[static_cast<unsigned char>(bytes[0]) % 4]);
-  mesh_fixtures::write_file(file, bytes.substr(1));
-  return file;
-}
 
 TEST(IsolatedImport, AssimpsSegfaultOnAMalformedOffIsARefusal) {
   mesh_fixtures::TempDir dir;

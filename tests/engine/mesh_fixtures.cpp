@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <locale>
 #include <random>
 #include <sstream>
@@ -475,6 +476,18 @@ std::string base64(const std::string& bytes) {
     }
   }
   return out;
+}
+
+std::filesystem::path fuzz_input_as_file(const std::string& name, const TempDir& dir) {
+  std::ifstream in(
+      std::filesystem::path(TUMBLE_SOURCE_DIR) / "tests/fuzz/corpus/mesh_import" / name,
+      std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (bytes.empty()) throw std::runtime_error("missing fuzz input " + name);
+  const char* extensions[] = {".stl", ".obj", ".ply", ".off"};
+  const auto file = dir / (name + extensions[static_cast<unsigned char>(bytes[0]) % 4]);
+  write_file(file, bytes.substr(1));
+  return file;
 }
 
 }  // namespace tumble::mesh_fixtures

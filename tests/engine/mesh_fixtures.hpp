@@ -77,6 +77,10 @@ class TempDir {
 /// Writes `bytes` verbatim.
 void write_file(const std::filesystem::path& file, const std::string& bytes);
 
+/// The mesh_import fuzz input `name` (tests/fuzz/corpus/mesh_import/) as a file in `dir`: its
+/// first byte chose the extension, the rest is the file.
+std::filesystem::path fuzz_input_as_file(const std::string& name, const TempDir& dir);
+
 /// The bytes of a binary STL (80-byte header, little-endian float32); faces must be triangles.
 /// The default header does not start with "solid", which some readers take for ASCII.
 std::string binary_stl_bytes(const Polyhedron& mesh,
