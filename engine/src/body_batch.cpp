@@ -1,17 +1,17 @@
 // Semi-implicit Euler over a structure of arrays of free bodies.
 //
-// The loop body is the scalar SemiImplicitEuler stepper (integrators.cpp) with the Eigen
-// quaternion operations written out on doubles, in the same order of operations where it
-// matters: the world-to-body rotation of L is Eigen's q^* v (v + w t + u x t, t = 2 u x v),
-// the turn is rotation_quaternion's exp(h w / 2) with its Taylor branch below 1e-4 rad (a
-// select, no branch), then the product and the normalisation (summed and grouped as Eigen's
-// SSE code does, so the two agree to a few ulps; the remaining difference is multiplying by
-// 1/J where the scalar stepper divides by J). No calls but sqrt, sin and cos, no aliasing
-// between the arrays (restrict-qualified pointers).
+// The loop body is the scalar SemiImplicitEuler stepper (integrators.cpp) on doubles: the
+// kick and drift, the world-to-body rotation of L written out as Eigen's q^* v
+// (v + w t + u x t, t = 2 u x v), then the same three principal-axis sub-rotations
+// R1(h) R2(h) R3(h) (principal_rotation.hpp, inlined here; each a half_angle() polynomial or
+// one sin and cos) and the same normalisation, so the two agree to a few ulps. No calls but
+// sqrt, sin and cos, no aliasing between the arrays (restrict-qualified pointers).
 #include "engine/body_batch.hpp"
 
 #include <cmath>
 #include <stdexcept>
+
+#include "principal_rotation.hpp"
 
 namespace tumble::engine {
 
@@ -82,31 +82,17 @@ void step_semi_implicit_euler(FreeBodyBatch& batch, const Eigen::Vector3d& gravi
     const double tx = 2.0 * (uy * lz[i] - uz * ly[i]);
     const double ty = 2.0 * (uz * lx[i] - ux * lz[i]);
     const double tz = 2.0 * (ux * ly[i] - uy * lx[i]);
-    const double bx = (lx[i] + w * tx + (uy * tz - uz * ty)) * j1[i];
-    const double by = (ly[i] + w * ty + (uz * tx - ux * tz)) * j2[i];
-    const double bz = (lz[i] + w * tz + (ux * ty - uy * tx)) * j3[i];
-    // World angular velocity w = q w_b (u = vec(q) now).
-    const double sx = 2.0 * (qy[i] * bz - qz[i] * by);
-    const double sy = 2.0 * (qz[i] * bx - qx[i] * bz);
-    const double sz = 2.0 * (qx[i] * by - qy[i] * bx);
-    const double ox = bx + w * sx + (qy[i] * sz - qz[i] * sy);
-    const double oy = by + w * sy + (qz[i] * sx - qx[i] * sz);
-    const double oz = bz + w * sz + (qx[i] * sy - qy[i] * sx);
-
-    // Turn: r = exp(h w / 2) = (cos(a/2), sin(a/2)/a * h w), a = h |w|, with the same
-    // half-angle functions as rotation_quaternion.
-    const double rvx = h * ox, rvy = h * oy, rvz = h * oz;
-    const HalfAngle turn = half_angle(0.25 * (rvx * rvx + rvy * rvy + rvz * rvz));
-    const double rw = turn.cos;
-    const double sinc_half = 0.5 * turn.sinc;
-    const double rx = sinc_half * rvx, ry = sinc_half * rvy, rz = sinc_half * rvz;
-
-    // q <- r q (grouped as Eigen's SSE quaternion product groups it), renormalised.
-    const double nx = (rw * qx[i] + ry * qz[i]) - (rz * qy[i] - rx * w);
-    const double ny = (rw * qy[i] + ry * w) + (rz * qx[i] - rx * qz[i]);
-    const double nz = (rw * qz[i] - ry * qx[i]) + (rz * w + rx * qy[i]);
-    const double nw = (rw * w - ry * qy[i]) - (rz * qz[i] + rx * qx[i]);
-    const Eigen::Quaterniond q = renormalized(Eigen::Quaterniond(nw, nx, ny, nz));
+    Eigen::Vector3d momentum(lx[i] + w * tx + (uy * tz - uz * ty),
+                             ly[i] + w * ty + (uz * tx - ux * tz),
+                             lz[i] + w * tz + (ux * ty - uy * tx));
+    // The free rotation R1(h) R2(h) R3(h); world L is not touched.
+    Eigen::Vector4d turned(w, qx[i], qy[i], qz[i]);
+    const Eigen::Vector3d inverse_moments(j1[i], j2[i], j3[i]);
+    for (int axis = 0; axis < 3; ++axis) {
+      steppers::rotate_about_principal_axis(inverse_moments, axis, h, turned, momentum);
+    }
+    const Eigen::Quaterniond q =
+        renormalized(Eigen::Quaterniond(turned[0], turned[1], turned[2], turned[3]));
     qw[i] = q.w();
     qx[i] = q.x();
     qy[i] = q.y();

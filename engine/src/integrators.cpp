@@ -4,11 +4,17 @@
 // - explicit-euler: everything from the old state, the rotation in the classic body-frame form
 //   w_b += h J^-1 (tau_b - w_b x J w_b), which is what makes it blow up on gyroscopic
 //   stiffness (the (w2, w3) rotation of a fast needle is amplified by sqrt(1 + (h w1)^2));
-// - semi-implicit-euler: the founding note's scheme made correct: kick v and world L with the
-//   old forces, then drift x and turn q with the new v and w = I_w^-1 L_new (old orientation).
-//   Symplectic Euler in translation; the rotational energy depends on both q and L, so in
-//   rotation this is a first-order Lie-Euler step whose energy drifts, but world L is exact
-//   without torques;
+// - semi-implicit-euler: symplectic Euler in translation and rotation alike: kick v and world
+//   L with the old forces, drift x with the new v, then the free rotation over h as the
+//   Lie-Trotter product R1(h) R2(h) R3(h) of the exact flows of the three terms
+//   L_i^2 / (2 J_i) of the kinetic energy (the first-order, non-symmetric sibling of the
+//   splitting integrator's R1(h/2) R2(h/2) R3(h) R2(h/2) R1(h/2); Dullweber, Leimkuhler and
+//   McLachlan 1997). A composition of exact Hamiltonian flows, hence symplectic: bounded
+//   energy error, no drift; world L exact without torques;
+// - lie-euler: what semi-implicit-euler used to be, kept for comparison: the same kick and
+//   drift, then q <- exp(h w / 2) q with w = I_w^-1 L_new at the old orientation. A first-order
+//   Lie-Euler step: world L exact without torques, but not symplectic in rotation (the
+//   rotational energy depends on both q and L), so the energy drifts;
 // - seed-semi-implicit: the note's angular update as written, w_{n+1} = w_n + h I_w^-1 tau,
 //   with no gyroscopic term: world w is frozen without torques (order 0, for comparison only);
 // - implicit-euler: backward Euler on the gyroscopic term in the body frame, solved by Newton
@@ -20,6 +26,7 @@
 #include <Eigen/LU>
 
 #include "engine/input_error.hpp"
+#include "principal_rotation.hpp"
 #include "steppers.hpp"
 
 namespace tumble::engine {
@@ -49,18 +56,43 @@ class ExplicitEuler final : public BodyStepper {
   const BodyModel& body_;
 };
 
+/// Kick with the old forces (none evaluated for a body without force terms), then drift x
+/// with the new v: the translational half of both semi-implicit-euler and lie-euler.
+void kick_and_drift(const BodyModel& body, BodyState& s, double h) {
+  if (!body.forces.empty()) {
+    const Rates r = rates(body, s);
+    s.angular_momentum += h * r.torque;
+    s.velocity += h * r.acceleration;
+  }
+  if (!body.pivoted) s.position += h * s.velocity;
+}
+
 class SemiImplicitEuler final : public BodyStepper {
  public:
-  explicit SemiImplicitEuler(const BodyModel& body) : body_(body) {}
+  explicit SemiImplicitEuler(const BodyModel& body)
+      : body_(body), inverse_moments_(body.moments.cwiseInverse()) {}
   void step(BodyState& s, double, double h) override {
-    // Kick with the old forces (none evaluated for a body without force terms), then drift
-    // with the new velocities.
-    if (!body_.forces.empty()) {
-      const Rates r = rates(body_, s);
-      s.angular_momentum += h * r.torque;
-      s.velocity += h * r.acceleration;
+    kick_and_drift(body_, s, h);
+    // R1(h) R2(h) R3(h): each an exact rotation about one principal axis by h L_i / J_i with
+    // the body-frame momentum turning back; world L is not touched.
+    Eigen::Vector3d momentum = s.orientation.conjugate() * s.angular_momentum;  // body frame
+    Eigen::Vector4d q(s.orientation.w(), s.orientation.x(), s.orientation.y(), s.orientation.z());
+    for (int axis = 0; axis < 3; ++axis) {
+      rotate_about_principal_axis(inverse_moments_, axis, h, q, momentum);
     }
-    if (!body_.pivoted) s.position += h * s.velocity;
+    s.orientation = renormalized(Eigen::Quaterniond(q[0], q[1], q[2], q[3]));
+  }
+
+ private:
+  const BodyModel& body_;
+  Eigen::Vector3d inverse_moments_;
+};
+
+class LieEuler final : public BodyStepper {
+ public:
+  explicit LieEuler(const BodyModel& body) : body_(body) {}
+  void step(BodyState& s, double, double h) override {
+    kick_and_drift(body_, s, h);
     const Eigen::Vector3d omega = angular_velocity(body_, s);  // new L, old orientation
     s.orientation = renormalized(rotation_quaternion(h * omega) * s.orientation);
   }
@@ -91,12 +123,6 @@ class SeedSemiImplicit final : public BodyStepper {
  private:
   const BodyModel& body_;
 };
-
-Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-  return m;
-}
 
 class ImplicitEuler final : public BodyStepper {
  public:
@@ -137,6 +163,9 @@ std::unique_ptr<BodyStepper> make_explicit_euler(const BodyModel& body) {
 std::unique_ptr<BodyStepper> make_semi_implicit_euler(const BodyModel& body) {
   return std::make_unique<SemiImplicitEuler>(body);
 }
+std::unique_ptr<BodyStepper> make_lie_euler(const BodyModel& body) {
+  return std::make_unique<LieEuler>(body);
+}
 std::unique_ptr<BodyStepper> make_seed_semi_implicit(const BodyModel& body) {
   return std::make_unique<SeedSemiImplicit>(body);
 }
@@ -152,9 +181,11 @@ const std::vector<IntegratorInfo>& integrator_catalog() {
       {K::kExplicitEuler, "explicit-euler", 1, false, false,
        "everything from the old state; energy grows, blows up on fast or extreme-ratio spins"},
       {K::kSemiImplicitEuler, "semi-implicit-euler", 1, false, false,
-       "the naive scheme of tumble's founding note (engine/PHYSICS.md §2) made correct: kick v "
-       "and L, drift x and turn q with the new w; "
-       "symplectic in translation, first order in rotation; world L exact"},
+       "symplectic Euler in translation and rotation: kick v and L, drift x, then the "
+       "principal-axis sub-rotations R1(h) R2(h) R3(h); bounded energy error, world L exact"},
+      {K::kLieEuler, "lie-euler", 1, false, false,
+       "the former semi-implicit-euler: kick v and L, drift x, turn q by the new w at the old "
+       "orientation; world L exact but the energy drifts; comparison only"},
       {K::kSeedSemiImplicit, "seed-semi-implicit", 0, false, false,
        "the founding note's update as written, no gyroscopic term (engine/PHYSICS.md §2): no "
        "flip, no precession; comparison only"},
@@ -171,6 +202,9 @@ const std::vector<IntegratorInfo>& integrator_catalog() {
        "4th-order Yoshida composition of splitting; symplectic, world L exact"},
       {K::kFreeRotor, "free-rotor", 2, false, false,
        "half kick, exact torque-free flow, half kick; exact without torques (gyroscopic tops)"},
+      {K::kMoserVeselov, "moser-veselov", 2, false, false,
+       "half kick, discrete Moser-Veselov step, half kick; symplectic, keeps world L and the "
+       "free body's energy to rounding"},
       {K::kDopri, "dopri", 5, true, false,
        "adaptive Dormand-Prince 5(4) with --tolerance; the reference for forced problems"},
       {K::kExact, "exact", -1, false, true,
@@ -201,6 +235,8 @@ std::unique_ptr<BodyStepper> make_stepper(IntegratorKind kind, const BodyModel& 
       return steppers::make_explicit_euler(body);
     case K::kSemiImplicitEuler:
       return steppers::make_semi_implicit_euler(body);
+    case K::kLieEuler:
+      return steppers::make_lie_euler(body);
     case K::kSeedSemiImplicit:
       return steppers::make_seed_semi_implicit(body);
     case K::kImplicitEuler:
@@ -215,6 +251,8 @@ std::unique_ptr<BodyStepper> make_stepper(IntegratorKind kind, const BodyModel& 
       return steppers::make_splitting(body, 4);
     case K::kFreeRotor:
       return steppers::make_free_rotor(body);
+    case K::kMoserVeselov:
+      return steppers::make_moser_veselov(body);
     case K::kDopri:
       return steppers::make_dopri(body, settings.tolerance);
     case K::kExact:

@@ -19,6 +19,7 @@
 #include <cmath>
 
 #include "engine/torque_free_exact.hpp"
+#include "principal_rotation.hpp"
 #include "steppers.hpp"
 
 namespace tumble::engine::steppers {
@@ -37,22 +38,7 @@ void split_rotation(const Eigen::Vector3d& inverse_moments, BodyState& s, double
   Eigen::Vector3d momentum = s.orientation.conjugate() * s.angular_momentum;  // body frame
   Eigen::Vector4d q(s.orientation.w(), s.orientation.x(), s.orientation.y(), s.orientation.z());
   const auto rotate_about = [&](int axis, double t) {
-    // Body turns by +angle about the axis; its body-frame momentum by -angle.
-    const double half = 0.5 * t * momentum[axis] * inverse_moments[axis];
-    const HalfAngle f = half_angle(half * half);
-    const double c = f.cos, sn = half * f.sinc;
-    // q <- q (c, sn e_axis): with a, b the next axes, w' = c w - sn q_axis,
-    // q_axis' = c q_axis + sn w, q_a' = c q_a + sn q_b, q_b' = c q_b - sn q_a (8 products).
-    const int i = axis + 1, a = (axis + 1) % 3, b = (axis + 2) % 3;
-    const double w = q[0], qi = q[i], qa = q[a + 1], qb = q[b + 1];
-    q[0] = c * w - sn * qi;
-    q[i] = c * qi + sn * w;
-    q[a + 1] = c * qa + sn * qb;
-    q[b + 1] = c * qb - sn * qa;
-    const double cos_full = c * c - sn * sn, sin_full = 2.0 * sn * c;
-    const double ma = momentum[a], mb = momentum[b];
-    momentum[a] = cos_full * ma + sin_full * mb;
-    momentum[b] = -sin_full * ma + cos_full * mb;
+    rotate_about_principal_axis(inverse_moments, axis, t, q, momentum);
   };
   rotate_about(0, 0.5 * h);
   rotate_about(1, 0.5 * h);

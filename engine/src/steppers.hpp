@@ -37,8 +37,16 @@ inline Rates rates(const BodyModel& body, const BodyState& state) {
   return rates(body, state, body.moments.cwiseInverse());
 }
 
+/// The matrix of v x: cross_matrix(v) w = v x w.
+inline Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d m;
+  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+  return m;
+}
+
 std::unique_ptr<BodyStepper> make_explicit_euler(const BodyModel& body);
 std::unique_ptr<BodyStepper> make_semi_implicit_euler(const BodyModel& body);
+std::unique_ptr<BodyStepper> make_lie_euler(const BodyModel& body);
 std::unique_ptr<BodyStepper> make_seed_semi_implicit(const BodyModel& body);
 std::unique_ptr<BodyStepper> make_implicit_euler(const BodyModel& body);
 std::unique_ptr<BodyStepper> make_rk4(const BodyModel& body);
@@ -46,6 +54,7 @@ std::unique_ptr<BodyStepper> make_midpoint(const BodyModel& body);
 std::unique_ptr<BodyStepper> make_dopri(const BodyModel& body, double tolerance);
 std::unique_ptr<BodyStepper> make_splitting(const BodyModel& body, int order);
 std::unique_ptr<BodyStepper> make_free_rotor(const BodyModel& body);
+std::unique_ptr<BodyStepper> make_moser_veselov(const BodyModel& body);
 std::unique_ptr<BodyStepper> make_exact(const BodyModel& body, const BodyState& initial);
 
 }  // namespace tumble::engine::steppers

@@ -145,7 +145,7 @@ StabilityCase long_run(double steps) {
   c.dts = {dt};
   c.description = "body (1, 2, 3) tumbling at 1.08 rad/s for " +
                   std::to_string(static_cast<long long>(steps)) + " steps";
-  c.only_integrators = {"splitting", "semi-implicit-euler"};
+  c.only_integrators = {"splitting", "semi-implicit-euler", "lie-euler"};
   c.skip_note = "long run: cheap integrators only";
   return c;
 }

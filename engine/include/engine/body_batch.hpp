@@ -36,9 +36,9 @@ struct FreeBodyBatch {
 };
 
 /// One step of semi-implicit (symplectic) Euler for every body of the batch, the scheme of the
-/// scalar "semi-implicit-euler" stepper under uniform gravity: v += h g, x += h v,
-/// w = R J^-1 R^T L (new L, old orientation; L is constant without torque),
-/// q <- exp(h w / 2) q, normalised.
+/// scalar "semi-implicit-euler" stepper under uniform gravity: v += h g, x += h v, then the
+/// free rotation as the principal-axis sub-rotations R1(h) R2(h) R3(h) (engine/PHYSICS.md §3;
+/// world L is constant without torque), normalised.
 void step_semi_implicit_euler(FreeBodyBatch& batch, const Eigen::Vector3d& gravity, double h);
 
 }  // namespace tumble::engine

@@ -14,6 +14,7 @@ namespace tumble::engine {
 enum class IntegratorKind {
   kExplicitEuler,
   kSemiImplicitEuler,
+  kLieEuler,
   kSeedSemiImplicit,
   kImplicitEuler,
   kRk4,
@@ -21,6 +22,7 @@ enum class IntegratorKind {
   kSplitting,
   kSplitting4,
   kFreeRotor,
+  kMoserVeselov,
   kDopri,
   kExact,
 };

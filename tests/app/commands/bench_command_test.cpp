@@ -44,10 +44,10 @@ json torque_free_scene() {
 }
 
 /// The integrators under test with their nominal orders (dopri swept by tolerance apart).
-const std::map<std::string, double> kOrders = {{"explicit-euler", 1}, {"semi-implicit-euler", 1},
-                                               {"implicit-euler", 1}, {"midpoint", 2},
-                                               {"splitting", 2},      {"rk4", 4},
-                                               {"splitting4", 4},     {"seed-semi-implicit", 0}};
+const std::map<std::string, double> kOrders = {
+    {"explicit-euler", 1}, {"semi-implicit-euler", 1}, {"lie-euler", 1}, {"implicit-euler", 1},
+    {"midpoint", 2},       {"splitting", 2},           {"rk4", 4},       {"splitting4", 4},
+    {"moser-veselov", 2},  {"seed-semi-implicit", 0}};
 
 class BenchCommand : public ::testing::Test {
  protected:
@@ -94,8 +94,8 @@ TEST_F(BenchCommand, RunsAndSaysWhereTheReportIs) {
   ASSERT_EQ(result_.status, 0) << result_.err;
   EXPECT_THAT(result_.out, HasSubstr("report.md"));
   // Progress: a line per run when stderr is not a terminal.
-  EXPECT_THAT(result_.err, HasSubstr("[1/48]"));
-  EXPECT_THAT(result_.err, HasSubstr("[48/48]"));
+  EXPECT_THAT(result_.err, HasSubstr("[1/58]"));
+  EXPECT_THAT(result_.err, HasSubstr("[58/58]"));
 }
 
 TEST_F(BenchCommand, MeasuredOrdersMatchTheIntegrators) {
@@ -145,8 +145,8 @@ TEST_F(BenchCommand, CsvHasEveryColumnAndOneRowPerRun) {
                                                   "momentum_error_max",
                                                   "energy_drift_max",
                                                   "momentum_norm_drift_max"}));
-  // Nine fixed-step integrators at five steps, dopri at three tolerances.
-  ASSERT_EQ(csv.rows.size(), 9u * 5u + 3u);
+  // Eleven fixed-step integrators at five steps, dopri at three tolerances.
+  ASSERT_EQ(csv.rows.size(), 11u * 5u + 3u);
   std::set<std::string> dts;
   std::map<std::string, int> runs;
   for (const auto& row : csv.rows) {
@@ -175,8 +175,9 @@ TEST_F(BenchCommand, ErrorsFallAsTheStepFalls) {
   for (const auto& row : csv.rows) {
     errors[row.at("integrator")].push_back(std::stod(row.at("orientation_error_final")));
   }
-  for (const char* name : {"explicit-euler", "semi-implicit-euler", "implicit-euler", "midpoint",
-                           "splitting", "splitting4", "free-rotor", "rk4", "dopri"}) {
+  for (const char* name :
+       {"explicit-euler", "semi-implicit-euler", "lie-euler", "implicit-euler", "midpoint",
+        "splitting", "splitting4", "moser-veselov", "free-rotor", "rk4", "dopri"}) {
     const auto& e = errors[name];
     for (std::size_t i = 1; i < e.size(); ++i) {
       if (e[i - 1] <= 1e-11) continue;  // at the rounding floor

@@ -141,8 +141,8 @@ TEST_F(QuickSuite, CsvHasEveryColumnAndOneRowPerRun) {
                              "note"}) {
     EXPECT_NE(std::find(header.begin(), header.end(), column), header.end()) << column;
   }
-  // 11 integrators x (2 + 2 + 3) dts.
-  EXPECT_EQ(rows.size(), 11u * 7u);
+  // 13 integrators x (2 + 2 + 3) dts.
+  EXPECT_EQ(rows.size(), 13u * 7u);
   for (const auto& row : rows) EXPECT_EQ(row.at("suite"), "quick");
 }
 
