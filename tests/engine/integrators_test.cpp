@@ -134,19 +134,19 @@ TEST_P(ConvergenceOrder, MatchesExpectedOrderFromDtSweep) {
   EXPECT_EQ(integrator_info(c.kind).order, static_cast<int>(c.expected_order));
 }
 
-INSTANTIATE_TEST_SUITE_P(TorqueFreeAsymmetric, ConvergenceOrder,
-                         ::testing::Values(OrderCase{K::kExplicitEuler, 1.0, 2000},
-                                           OrderCase{K::kSemiImplicitEuler, 1.0, 2000},
-                                           OrderCase{K::kImplicitEuler, 1.0, 2000},
-                                           OrderCase{K::kMidpoint, 2.0, 100},
-                                           OrderCase{K::kSplitting, 2.0, 100},
-                                           OrderCase{K::kRk4, 4.0, 25},
-                                           OrderCase{K::kSplitting4, 4.0, 25}),
-                         [](const ::testing::TestParamInfo<OrderCase>& test_info) {
-                           std::string name = integrator_info(test_info.param.kind).name;
-                           std::replace(name.begin(), name.end(), '-', '_');
-                           return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    TorqueFreeAsymmetric, ConvergenceOrder,
+    ::testing::Values(OrderCase{K::kExplicitEuler, 1.0, 2000},
+                      OrderCase{K::kSemiImplicitEuler, 1.0, 2000},
+                      OrderCase{K::kLieEuler, 1.0, 2000}, OrderCase{K::kImplicitEuler, 1.0, 2000},
+                      OrderCase{K::kMidpoint, 2.0, 100}, OrderCase{K::kSplitting, 2.0, 100},
+                      OrderCase{K::kMoserVeselov, 2.0, 100}, OrderCase{K::kRk4, 4.0, 25},
+                      OrderCase{K::kSplitting4, 4.0, 25}),
+    [](const ::testing::TestParamInfo<OrderCase>& test_info) {
+      std::string name = integrator_info(test_info.param.kind).name;
+      std::replace(name.begin(), name.end(), '-', '_');
+      return name;
+    });
 
 // The note's update as written has no gyroscopic term: its error is a modelling error and does
 // not shrink with dt (order 0).
@@ -219,11 +219,12 @@ TEST(FreeRotor, MatchesExactToRoundingOverManySteps) {
             1e-14 * start.angular_momentum.norm());
 }
 
-// The splittings never touch world L without torques; semi-implicit Euler neither.
+// The splittings never touch world L without torques; the Euler kicks and moser-veselov neither.
 TEST(Splitting, WorldAngularMomentumExactOverTenThousandSteps) {
   const BodyModel body = free_body(Eigen::Vector3d(1.0, 3.0, 3.5));
   const BodyState start = spinning_state(body, kOrientation, Eigen::Vector3d(0.3, 2.0, 0.4));
-  for (const K kind : {K::kSplitting, K::kSplitting4, K::kSemiImplicitEuler}) {
+  for (const K kind :
+       {K::kSplitting, K::kSplitting4, K::kSemiImplicitEuler, K::kLieEuler, K::kMoserVeselov}) {
     SCOPED_TRACE(integrator_info(kind).name);
     const BodyState end = run(kind, body, start, 0.01, 10000);
     EXPECT_LE((end.angular_momentum - start.angular_momentum).norm(),
