@@ -163,7 +163,7 @@ TEST(BenchPlots, AZeroErrorIsDrawnAtTheFloorAndNamed) {
   EXPECT_THAT(script, HasSubstr(floor_line.str()));
   // The free-rotor's other run is drawn as usual, so its zero marker goes without a title.
   EXPECT_THAT(script, HasSubstr("pointtype 10 pointsize 1.6 notitle"));
-  EXPECT_THAT(script, HasSubstr("open triangles: error exactly 0, drawn at 1e-17"));
+  EXPECT_THAT(script, HasSubstr("open triangles:\\nerror exactly 0,\\ndrawn at 1e-17"));
   EXPECT_THAT(script, HasSubstr("$p0_2_zero using 1:2 with points linecolor rgb '" +
                                 integrator_style("free-rotor").colour + "' pointtype 10"));
   // A plot with no zero has no note.
