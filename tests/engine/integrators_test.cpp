@@ -19,6 +19,7 @@
 
 #include "engine/input_error.hpp"
 #include "engine/rigid_body.hpp"
+#include "engine/simulation.hpp"
 #include "engine/torque_free_exact.hpp"
 #include "support/input_error.hpp"
 
@@ -551,6 +552,42 @@ TEST(Dopri, AStateChangedFromOutsideIsTakenUp) {
   stepper->step(s, 0.1, 0.5);
   const TorqueFreeMotion exact(kMoments, kOrientation, omega1);
   EXPECT_LT(error_against(exact, 0.5, body, s), 1e-8);
+}
+
+// In a Simulation a pivoted body's x and v are rewritten after every step (derived from q and
+// L): dopri must carry on from its own state, not restart each output step (a restart costs
+// an evaluation: evaluations = 1 + 6 attempts holds only without restarts), and its steps must
+// not depend on the output step.
+TEST(Dopri, APivotedTopInASimulationKeepsItsOwnSteps) {
+  BodyModel top = free_body(Eigen::Vector3d(1.25, 1.25, 0.5));
+  top.name = "top";
+  top.pivoted = true;
+  top.center_offset = Eigen::Vector3d(0.0, 0.0, 0.5);
+  top.forces = {Gravity{Eigen::Vector3d(0.0, 0.0, -9.81)}};
+  const BodyState start =
+      spinning_state(top, Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX())),
+                     Eigen::Vector3d(0.0, 0.0, 20.0));
+  std::vector<StepCounts> counts;
+  std::vector<BodyState> ends;
+  for (const double dt : {0.1, 0.01}) {
+    SimulationSettings settings;
+    settings.integrator = K::kDopri;
+    settings.dt = dt;
+    settings.duration = 1.0;
+    settings.tolerance = 1e-9;
+    Simulation simulation({top}, {start}, settings);
+    while (simulation.step()) {
+    }
+    ASSERT_FALSE(simulation.blow_up().has_value());
+    counts.push_back(simulation.step_counts());
+    ends.push_back(simulation.states()[0]);
+    EXPECT_EQ(counts.back().evaluations, 1 + 6 * (counts.back().accepted + counts.back().rejected));
+  }
+  EXPECT_LE(counts[0].accepted, counts[1].accepted + 1);
+  EXPECT_LE(counts[1].accepted, counts[0].accepted + 1);
+  EXPECT_GT(counts[0].accepted, 20u);
+  // The same trajectory, sampled differently: the end states agree to about the tolerance.
+  EXPECT_LT(orientation_angle(ends[0].orientation, ends[1].orientation), 1e-7);
 }
 
 TEST(Exact, RefusesBodiesWithTorques) {
