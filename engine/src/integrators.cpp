@@ -177,38 +177,49 @@ std::unique_ptr<BodyStepper> make_implicit_euler(const BodyModel& body) {
 
 const std::vector<IntegratorInfo>& integrator_catalog() {
   using K = IntegratorKind;
+  // The last figure: right-hand-side evaluations per step (engine/PHYSICS.md §5): the force
+  // evaluations with their rotational rate, counted as if the body had force terms (those
+  // without skip the force code, not the count). Kicks are not shared between steps: a
+  // splitting evaluates at both ends of each sub-step. implicit-euler's Newton solve reuses its
+  // one evaluation; midpoint's fixed-point sweeps are at least 2 (predictor and one sweep), the
+  // figure a lower bound until it counts its own. dopri counts its own, exact evaluates none.
   static const std::vector<IntegratorInfo> catalog = {
       {K::kExplicitEuler, "explicit-euler", 1, false, false,
-       "everything from the old state; energy grows, blows up on fast or extreme-ratio spins"},
+       "everything from the old state; energy grows, blows up on fast or extreme-ratio spins", 1},
       {K::kSemiImplicitEuler, "semi-implicit-euler", 1, false, false,
        "symplectic Euler in translation and rotation: kick v and L, drift x, then the "
-       "principal-axis sub-rotations R1(h) R2(h) R3(h); bounded energy error, world L exact"},
+       "principal-axis sub-rotations R1(h) R2(h) R3(h); bounded energy error, world L exact",
+       1},
       {K::kLieEuler, "lie-euler", 1, false, false,
        "the former semi-implicit-euler: kick v and L, drift x, turn q by the new w at the old "
-       "orientation; world L exact but the energy drifts; comparison only"},
+       "orientation; world L exact but the energy drifts; comparison only",
+       1},
       {K::kSeedSemiImplicit, "seed-semi-implicit", 0, false, false,
        "the founding note's update as written, no gyroscopic term (engine/PHYSICS.md §2): no "
-       "flip, no precession; comparison only"},
+       "flip, no precession; comparison only",
+       1},
       {K::kImplicitEuler, "implicit-euler", 1, false, false,
        "backward Euler on the gyroscopic term (Newton), symplectic Euler in translation; "
-       "stable, damps tumbling"},
+       "stable, damps tumbling",
+       1},
       {K::kRk4, "rk4", 4, false, false,
-       "classical RK4, Munthe-Kaas form on the rotation group (4th order in orientation too)"},
+       "classical RK4, Munthe-Kaas form on the rotation group (4th order in orientation too)", 4},
       {K::kMidpoint, "midpoint", 2, false, false,
-       "implicit midpoint, symmetric; keeps energy, |L| and |q| of the free body exactly"},
+       "implicit midpoint, symmetric; keeps energy, |L| and |q| of the free body exactly", 2},
       {K::kSplitting, "splitting", 2, false, false,
-       "explicit symplectic rotation splitting (Dullweber-Leimkuhler-McLachlan); world L exact"},
+       "explicit symplectic rotation splitting (Dullweber-Leimkuhler-McLachlan); world L exact", 2},
       {K::kSplitting4, "splitting4", 4, false, false,
-       "4th-order Yoshida composition of splitting; symplectic, world L exact"},
+       "4th-order Yoshida composition of splitting; symplectic, world L exact", 6},
       {K::kFreeRotor, "free-rotor", 2, false, false,
-       "half kick, exact torque-free flow, half kick; exact without torques (gyroscopic tops)"},
+       "half kick, exact torque-free flow, half kick; exact without torques (gyroscopic tops)", 2},
       {K::kMoserVeselov, "moser-veselov", 2, false, false,
        "half kick, discrete Moser-Veselov step, half kick; symplectic, keeps world L and the "
-       "free body's energy to rounding"},
+       "free body's energy to rounding",
+       2},
       {K::kDopri, "dopri", 5, true, false,
-       "adaptive Dormand-Prince 5(4) with --tolerance; the reference for forced problems"},
+       "adaptive Dormand-Prince 5(4) with --tolerance; the reference for forced problems", 0},
       {K::kExact, "exact", -1, false, true,
-       "the torque-free solution (Jacobi elliptic functions); refuses scenes with torques"},
+       "the torque-free solution (Jacobi elliptic functions); refuses scenes with torques", 0},
   };
   return catalog;
 }

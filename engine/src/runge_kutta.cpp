@@ -14,8 +14,11 @@
 //
 // dopri is Dormand and Prince's embedded 5(4) pair (J. Comput. Appl. Math. 6 (1980)) on
 // (x, v, q, L) with q as four numbers, renormalised after each accepted step, and the usual
-// step-size control; each call integrates exactly to the end of the output step.
+// step-size control. It takes its own steps whatever the output step, running ahead of the
+// output time, and evaluates the output instants by its continuous extension (Hairer,
+// Norsett, Wanner 1993, II.6), so that its step sequence does not depend on when it is asked.
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "steppers.hpp"
@@ -151,49 +154,130 @@ class Dopri final : public BodyStepper {
  public:
   Dopri(const BodyModel& body, double tolerance) : body_(body), tolerance_(tolerance) {}
 
-  void step(BodyState& s, double, double h) override {
-    Vector13 y = pack(s, s.angular_momentum);
-    if (!(step_ > 0.0)) step_ = initial_step(y, h);
-    double done = 0.0;
-    for (int attempts = 0; done < h && attempts < 1'000'000; ++attempts) {
-      const double remaining = h - done;
-      const double trial = std::min(step_, remaining);
-      Vector13 next, error;
-      attempt(y, trial, next, error);
-      // Mixed absolute/relative error norm (RMS over the components).
-      double sum = 0.0;
-      for (int i = 0; i < 13; ++i) {
-        const double scale = tolerance_ * (1.0 + std::max(std::abs(y[i]), std::abs(next[i])));
-        sum += (error[i] / scale) * (error[i] / scale);
-      }
-      const double norm = std::sqrt(sum / 13.0);
-      if (!std::isfinite(norm)) {  // a non-finite state: hand it back for detection
-        y = next;
-        break;
-      }
-      if (norm <= 1.0) {
-        done = trial < remaining ? done + trial : h;
-        y = next;
-        const Eigen::Quaterniond q = quaternion_of(y).normalized();
-        y.segment<4>(6) << q.w(), q.x(), q.y(), q.z();
-      }
-      // Standard controller: safety 0.9, growth between 0.2x and 5x.
-      const double factor = norm == 0.0 ? 5.0 : std::clamp(0.9 * std::pow(norm, -0.2), 0.2, 5.0);
-      if (norm <= 1.0 && trial < step_) continue;  // a short last step says nothing of step_
-      step_ = trial * factor;
+  void step(BodyState& s, double t, double h) override {
+    const double target = t + h;
+    if (!continues(s, t)) restart(s, t, h);
+    // Natural steps until the last accepted one reaches the output time, which is then
+    // interpolated: the output step never shortens a step.
+    bool good = true;
+    for (int attempts = 0; good && t_ < target && attempts < 1'000'000; ++attempts) {
+      good = advance();
     }
-    // A step size that collapsed to nothing: hand back a non-finite state to be reported.
-    if (done < h) y.setConstant(NAN);
+    Vector13 y = y_;
+    if (!good || t_ < target) {
+      // A non-finite step, or a step size that collapsed: a non-finite state to be reported.
+      y.setConstant(NAN);
+    } else if (target < t_) {
+      y = interpolate(target);
+    }
     if (!body_.pivoted) {
       s.position = y.segment<3>(0);
       s.velocity = y.segment<3>(3);
     }
     s.orientation = quaternion_of(y).normalized();
     s.angular_momentum = y.segment<3>(10);
+    handed_ = s;
+    handed_time_ = target;
+    started_ = true;
+  }
+
+  std::optional<StepCounts> counts() const override {
+    return StepCounts{accepted_, rejected_, evaluations_};
   }
 
  private:
+  using Stages = std::array<Vector13, 7>;
+
+  /// Whether `s` at `t` is what the last call handed back, so the internal state (which may be
+  /// ahead of it) still applies. x and v of a pivoted body are derived from q and L after each
+  /// step (update_pivot_kinematics) and are not integrated here, so they are not compared.
+  bool continues(const BodyState& s, double t) const {
+    if (!started_ || !(std::abs(t - handed_time_) <= 1e-12 * std::max(1.0, std::abs(t)))) {
+      return false;
+    }
+    const bool moved =
+        !body_.pivoted && (s.position != handed_.position || s.velocity != handed_.velocity);
+    return !moved && s.orientation.coeffs() == handed_.orientation.coeffs() &&
+           s.angular_momentum == handed_.angular_momentum;
+  }
+
+  /// Starts the integration afresh from `s` at `t` (the first call, or a state changed from
+  /// outside); the controller's step size is kept.
+  void restart(const BodyState& s, double t, double h) {
+    y_ = pack(s, s.angular_momentum);
+    t_ = t;
+    k1_ = rate(y_);
+    if (!(step_ > 0.0)) {
+      // A small fraction of a turn, and of the output step.
+      const double spin = k1_.segment<4>(6).norm() * 2.0;
+      step_ = std::min(h, spin > 0.0 ? 0.01 / spin : h);
+    }
+  }
+
+  /// One attempt from (t_, y_) with the current step size; on acceptance the interval
+  /// [t_, t_ + step] becomes the one interpolated. False on a non-finite error estimate.
+  bool advance() {
+    const double h = step_;
+    Stages k;
+    k[0] = k1_;
+    Vector13 next, error;
+    attempt(y_, h, k, next, error);
+    // Mixed absolute/relative error norm (RMS over the components).
+    double sum = 0.0;
+    for (int i = 0; i < 13; ++i) {
+      const double scale = tolerance_ * (1.0 + std::max(std::abs(y_[i]), std::abs(next[i])));
+      sum += (error[i] / scale) * (error[i] / scale);
+    }
+    const double norm = std::sqrt(sum / 13.0);
+    if (!std::isfinite(norm)) return false;
+    if (norm <= 1.0) {
+      ++accepted_;
+      keep_interpolant(h, k, next);
+      t_ += h;
+      // q renormalised; f is linear in q's four numbers at a given unit q (w depends on q/|q|
+      // only), so the last stage rescaled is exactly the first stage at the renormalised state.
+      const double length = quaternion_of(next).norm();
+      y_ = next;
+      y_.segment<4>(6) /= length;
+      k1_ = k[6];
+      k1_.segment<4>(6) /= length;
+    } else {
+      ++rejected_;
+    }
+    // Standard controller: safety 0.9, growth between 0.2x and 5x.
+    step_ = h * (norm == 0.0 ? 5.0 : std::clamp(0.9 * std::pow(norm, -0.2), 0.2, 5.0));
+    return true;
+  }
+
+  /// Dormand and Prince's continuous extension of the accepted step (Hairer, Norsett, Wanner
+  /// 1993, II.6; Shampine 1986): a 4th-order polynomial through y_n and y_n+1 with the slopes
+  /// k1 and k7 at its ends, in the nested form y(theta) = r1 + theta (r2 + (1 - theta) (r3 +
+  /// theta (r4 + (1 - theta) r5))).
+  void keep_interpolant(double h, const Stages& k, const Vector13& next) {
+    constexpr double d1 = -12715105075.0 / 11282082432.0, d3 = 87487479700.0 / 32700410799.0,
+                     d4 = -10690763975.0 / 1880347072.0, d5 = 701980252875.0 / 199316789632.0,
+                     d6 = -1453857185.0 / 822651844.0, d7 = 69997945.0 / 29380423.0;
+    dense_[0] = y_;
+    dense_[1] = next - y_;
+    dense_[2] = h * k[0] - dense_[1];
+    dense_[3] = dense_[1] - h * k[6] - dense_[2];
+    dense_[4] = h * (d1 * k[0] + d3 * k[2] + d4 * k[3] + d5 * k[4] + d6 * k[5] + d7 * k[6]);
+    interval_start_ = t_;
+    interval_length_ = h;
+  }
+
+  /// The state at `time` in the last accepted step, q renormalised.
+  Vector13 interpolate(double time) const {
+    const double theta = (time - interval_start_) / interval_length_, rest = 1.0 - theta;
+    Vector13 y = dense_[0] +
+                 theta * (dense_[1] + rest * (dense_[2] + theta * (dense_[3] + rest * dense_[4])));
+    const Eigen::Quaterniond q = quaternion_of(y).normalized();
+    y.segment<4>(6) << q.w(), q.x(), q.y(), q.z();
+    return y;
+  }
+
   Vector13 rate(const Vector13& y) const {
+    ++evaluations_;
     BodyState state;
     state.position = y.segment<3>(0);
     state.velocity = y.segment<3>(3);
@@ -206,33 +290,41 @@ class Dopri final : public BodyStepper {
     return out;
   }
 
-  double initial_step(const Vector13& y, double h) const {
-    // A small fraction of a turn, and of the output step.
-    const double spin = rate(y).segment<4>(6).norm() * 2.0;
-    return std::min(h, spin > 0.0 ? 0.01 / spin : h);
-  }
-
-  void attempt(const Vector13& y, double h, Vector13& next, Vector13& error) const {
-    // Dormand-Prince 5(4) tableau.
-    const Vector13 k1 = rate(y);
-    const Vector13 k2 = rate(y + h * (1.0 / 5.0) * k1);
-    const Vector13 k3 = rate(y + h * ((3.0 / 40.0) * k1 + (9.0 / 40.0) * k2));
-    const Vector13 k4 = rate(y + h * ((44.0 / 45.0) * k1 - (56.0 / 15.0) * k2 + (32.0 / 9.0) * k3));
-    const Vector13 k5 = rate(y + h * ((19372.0 / 6561.0) * k1 - (25360.0 / 2187.0) * k2 +
-                                      (64448.0 / 6561.0) * k3 - (212.0 / 729.0) * k4));
-    const Vector13 k6 =
-        rate(y + h * ((9017.0 / 3168.0) * k1 - (355.0 / 33.0) * k2 + (46732.0 / 5247.0) * k3 +
-                      (49.0 / 176.0) * k4 - (5103.0 / 18656.0) * k5));
-    next = y + h * ((35.0 / 384.0) * k1 + (500.0 / 1113.0) * k3 + (125.0 / 192.0) * k4 -
-                    (2187.0 / 6784.0) * k5 + (11.0 / 84.0) * k6);
-    const Vector13 k7 = rate(next);
-    error = h * ((71.0 / 57600.0) * k1 - (71.0 / 16695.0) * k3 + (71.0 / 1920.0) * k4 -
-                 (17253.0 / 339200.0) * k5 + (22.0 / 525.0) * k6 - (1.0 / 40.0) * k7);
+  /// Dormand-Prince 5(4) tableau from k[0] = f(y): fills k[1..6] (k[6] = f(next), first same
+  /// as last), the 5th-order `next` and the embedded error estimate.
+  void attempt(const Vector13& y, double h, Stages& k, Vector13& next, Vector13& error) const {
+    k[1] = rate(y + h * (1.0 / 5.0) * k[0]);
+    k[2] = rate(y + h * ((3.0 / 40.0) * k[0] + (9.0 / 40.0) * k[1]));
+    k[3] = rate(y + h * ((44.0 / 45.0) * k[0] - (56.0 / 15.0) * k[1] + (32.0 / 9.0) * k[2]));
+    k[4] = rate(y + h * ((19372.0 / 6561.0) * k[0] - (25360.0 / 2187.0) * k[1] +
+                         (64448.0 / 6561.0) * k[2] - (212.0 / 729.0) * k[3]));
+    k[5] =
+        rate(y + h * ((9017.0 / 3168.0) * k[0] - (355.0 / 33.0) * k[1] + (46732.0 / 5247.0) * k[2] +
+                      (49.0 / 176.0) * k[3] - (5103.0 / 18656.0) * k[4]));
+    next = y + h * ((35.0 / 384.0) * k[0] + (500.0 / 1113.0) * k[2] + (125.0 / 192.0) * k[3] -
+                    (2187.0 / 6784.0) * k[4] + (11.0 / 84.0) * k[5]);
+    k[6] = rate(next);
+    error = h * ((71.0 / 57600.0) * k[0] - (71.0 / 16695.0) * k[2] + (71.0 / 1920.0) * k[3] -
+                 (17253.0 / 339200.0) * k[4] + (22.0 / 525.0) * k[5] - (1.0 / 40.0) * k[6]);
   }
 
   const BodyModel& body_;
   double tolerance_;
   double step_ = 0.0;  ///< the controller's current step, kept across output steps
+  // The integration proper, possibly ahead of the output time: (t_, y_) and f(y_).
+  bool started_ = false;
+  double t_ = 0.0;
+  Vector13 y_ = Vector13::Zero();
+  Vector13 k1_ = Vector13::Zero();
+  // The last accepted step, [interval_start_, interval_start_ + interval_length_].
+  std::array<Vector13, 5> dense_{};
+  double interval_start_ = 0.0;
+  double interval_length_ = 0.0;
+  // What the last call handed back, and when.
+  BodyState handed_;
+  double handed_time_ = 0.0;
+  std::size_t accepted_ = 0, rejected_ = 0;
+  mutable std::size_t evaluations_ = 0;
 };
 
 }  // namespace

@@ -37,6 +37,24 @@ Simulation::Simulation(std::vector<BodyModel> bodies, std::vector<BodyState> ini
   initial_ = states_;
 }
 
+StepCounts Simulation::step_counts() const {
+  const int per_step = integrator_info(settings_.integrator).evaluations_per_step;
+  StepCounts sum;
+  for (std::size_t i = 0; i < steppers_.size(); ++i) {
+    if (const std::optional<StepCounts> own = steppers_[i]->counts()) {
+      sum.accepted += own->accepted;
+      sum.rejected += own->rejected;
+      sum.evaluations += own->evaluations;
+      continue;
+    }
+    // The bodies up to the one that blew up stepped once more than the steps committed.
+    const std::size_t calls = steps_ + (blow_up_ && i <= blow_up_->body ? 1 : 0);
+    sum.accepted += calls;
+    sum.evaluations += calls * static_cast<std::size_t>(per_step);
+  }
+  return sum;
+}
+
 std::size_t Simulation::total_steps() const {
   // The last step may be shorter; a duration within rounding of a whole number of steps
   // takes exactly that number.

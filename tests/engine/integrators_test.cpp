@@ -19,6 +19,7 @@
 
 #include "engine/input_error.hpp"
 #include "engine/rigid_body.hpp"
+#include "engine/simulation.hpp"
 #include "engine/torque_free_exact.hpp"
 #include "support/input_error.hpp"
 
@@ -498,6 +499,96 @@ TEST(Dopri, ErrorFallsWithToleranceToAboutTheTolerance) {
   for (std::size_t i = 1; i < errors.size(); ++i) EXPECT_LT(errors[i], 0.05 * errors[i - 1]);
   EXPECT_LT(errors.back(), 1e-11);
   EXPECT_LT(errors.front(), 1e-3);
+}
+
+// Dense output: dopri takes its own steps and interpolates the output instants (Hairer,
+// Norsett, Wanner 1993, II.6), so the output step changes neither the steps nor the accuracy.
+TEST(Dopri, DenseOutputIsAccurateAndLeavesTheStepsAlone) {
+  const BodyModel body = free_body(kMoments);
+  const Eigen::Vector3d omega0(0.4, 0.8, 0.6);
+  const BodyState start = spinning_state(body, kOrientation, omega0);
+  const TorqueFreeMotion exact(kMoments, kOrientation, omega0);
+  const double tolerance = 1e-9, duration = 4.0;
+  StepSettings settings;
+  settings.tolerance = tolerance;
+  std::vector<StepCounts> counts;
+  for (const double h : {0.1, 0.01, 4.0}) {
+    const auto stepper = make_stepper(K::kDopri, body, start, settings);
+    BodyState s = start;
+    double worst = 0.0;
+    const int steps = static_cast<int>(std::lround(duration / h));
+    for (int i = 0; i < steps; ++i) {
+      stepper->step(s, i * h, h);
+      worst = std::max(worst, error_against(exact, (i + 1) * h, body, s));
+      EXPECT_NEAR(s.orientation.norm(), 1.0, 1e-15);  // q renormalised after interpolation
+    }
+    std::printf("[ dopri ] output step %g: worst error %.3g, steps %zu + %zu rejected\n", h, worst,
+                stepper->counts()->accepted, stepper->counts()->rejected);
+    // About the tolerance at every output instant (the interpolant is 4th order, the step 5th).
+    EXPECT_LT(worst, 100.0 * tolerance) << h;
+    EXPECT_GT(worst, 0.0);
+    ASSERT_TRUE(stepper->counts().has_value());
+    counts.push_back(*stepper->counts());
+    // First same as last: one evaluation to start, then six per attempt.
+    EXPECT_EQ(counts.back().evaluations, 1 + 6 * (counts.back().accepted + counts.back().rejected));
+  }
+  // The step sequence is the controller's alone (at most a step more to cover a later end).
+  EXPECT_GT(counts[0].accepted, 20u);
+  EXPECT_LE(counts[0].accepted, counts[1].accepted + 1);
+  EXPECT_LE(counts[1].accepted, counts[0].accepted + 1);
+  EXPECT_LE(counts[0].accepted, counts[2].accepted + 1);
+  EXPECT_LE(counts[2].accepted, counts[0].accepted + 1);
+}
+
+// A state changed between calls (not what the stepper handed back) restarts the integration
+// from it instead of carrying on from the stepper's own state ahead of it.
+TEST(Dopri, AStateChangedFromOutsideIsTakenUp) {
+  const BodyModel body = free_body(kMoments);
+  const Eigen::Vector3d omega0(0.4, 0.8, 0.6), omega1(0.1, -0.3, 0.9);
+  const BodyState start = spinning_state(body, kOrientation, omega0);
+  const auto stepper = make_stepper(K::kDopri, body, start, {});
+  BodyState s = start;
+  stepper->step(s, 0.0, 0.1);
+  s = spinning_state(body, kOrientation, omega1);  // replaced at t = 0.1
+  stepper->step(s, 0.1, 0.5);
+  const TorqueFreeMotion exact(kMoments, kOrientation, omega1);
+  EXPECT_LT(error_against(exact, 0.5, body, s), 1e-8);
+}
+
+// In a Simulation a pivoted body's x and v are rewritten after every step (derived from q and
+// L): dopri must carry on from its own state, not restart each output step (a restart costs
+// an evaluation: evaluations = 1 + 6 attempts holds only without restarts), and its steps must
+// not depend on the output step.
+TEST(Dopri, APivotedTopInASimulationKeepsItsOwnSteps) {
+  BodyModel top = free_body(Eigen::Vector3d(1.25, 1.25, 0.5));
+  top.name = "top";
+  top.pivoted = true;
+  top.center_offset = Eigen::Vector3d(0.0, 0.0, 0.5);
+  top.forces = {Gravity{Eigen::Vector3d(0.0, 0.0, -9.81)}};
+  const BodyState start =
+      spinning_state(top, Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX())),
+                     Eigen::Vector3d(0.0, 0.0, 20.0));
+  std::vector<StepCounts> counts;
+  std::vector<BodyState> ends;
+  for (const double dt : {0.1, 0.01}) {
+    SimulationSettings settings;
+    settings.integrator = K::kDopri;
+    settings.dt = dt;
+    settings.duration = 1.0;
+    settings.tolerance = 1e-9;
+    Simulation simulation({top}, {start}, settings);
+    while (simulation.step()) {
+    }
+    ASSERT_FALSE(simulation.blow_up().has_value());
+    counts.push_back(simulation.step_counts());
+    ends.push_back(simulation.states()[0]);
+    EXPECT_EQ(counts.back().evaluations, 1 + 6 * (counts.back().accepted + counts.back().rejected));
+  }
+  EXPECT_LE(counts[0].accepted, counts[1].accepted + 1);
+  EXPECT_LE(counts[1].accepted, counts[0].accepted + 1);
+  EXPECT_GT(counts[0].accepted, 20u);
+  // The same trajectory, sampled differently: the end states agree to about the tolerance.
+  EXPECT_LT(orientation_angle(ends[0].orientation, ends[1].orientation), 1e-7);
 }
 
 TEST(Exact, RefusesBodiesWithTorques) {

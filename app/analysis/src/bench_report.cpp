@@ -58,6 +58,9 @@ const std::vector<std::string>& results_columns() {
                                                    "duration",
                                                    "steps",
                                                    "total_steps",
+                                                   "accepted_steps",
+                                                   "rejected_steps",
+                                                   "evaluations",
                                                    "blew_up",
                                                    "blow_up_time",
                                                    "blow_up_reason",
@@ -89,16 +92,16 @@ void write_results_csv(const BenchOutcome& outcome, const std::filesystem::path&
     const BenchCase& c = outcome.cases[i];
     const CaseResult& r = outcome.results[i];
     const BenchScene& scene = outcome.scenes[c.scene];
-    const auto [low, high] = std::minmax_element(r.seconds.begin(), r.seconds.end());
     const bool blew_up = r.blow_up_time.has_value();
     out << csv_text(scene.label) << "," << csv_text(scene.file.string()) << "," << c.integrator
         << "," << c.order << "," << (c.adaptive ? 1 : 0) << "," << number(c.dt) << ","
         << (c.tolerance ? number(*c.tolerance) : "") << "," << number(scene.settings.duration)
-        << "," << r.steps << "," << r.total_steps << "," << (blew_up ? 1 : 0) << ","
+        << "," << r.steps << "," << r.total_steps << "," << r.counts.accepted << ","
+        << r.counts.rejected << "," << r.counts.evaluations << "," << (blew_up ? 1 : 0) << ","
         << (blew_up ? number(*r.blow_up_time) : "") << "," << csv_text(r.blow_up_reason) << ","
         << r.seconds.size() << "," << number(r.median_seconds) << ","
-        << (low != r.seconds.end() ? number(*low) : "") << ","
-        << (high != r.seconds.end() ? number(*high) : "") << ","
+        << (r.seconds.empty() ? "" : number(r.min_seconds)) << ","
+        << (r.seconds.empty() ? "" : number(r.max_seconds)) << ","
         << number(r.steps ? 1e9 * r.median_seconds / static_cast<double>(r.steps) : 0.0) << ","
         << r.core << "," << r.errors.samples;
     const ErrorFigures& e = r.errors;
@@ -112,77 +115,17 @@ void write_results_csv(const BenchOutcome& outcome, const std::filesystem::path&
   write_text_file(file, out.str());
 }
 
-const std::vector<ErrorMeasure>& plotted_measures() {
-  static const std::vector<ErrorMeasure> measures = {
-      {"orientation_final", "final orientation error (rad)", &ErrorFigures::orientation_final},
-      {"orientation_max", "max orientation error (rad)", &ErrorFigures::orientation_max},
-      {"omega_max", "max relative error of world omega", &ErrorFigures::omega_max},
-      {"momentum_max", "max relative error of world L", &ErrorFigures::momentum_max},
-      {"energy_drift", "max relative energy drift", &ErrorFigures::energy_drift_max},
-      {"momentum_norm_drift", "max relative |L| drift", &ErrorFigures::momentum_norm_drift_max},
-  };
-  return measures;
+namespace {
+
+/// A run's steps per body: its output steps, or the accepted steps of an adaptive run.
+double steps_per_body(const BenchOutcome& outcome, std::size_t i) {
+  const CaseResult& r = outcome.results[i];
+  const std::size_t bodies =
+      std::max<std::size_t>(1, outcome.scenes[outcome.cases[i].scene].bodies.size());
+  return static_cast<double>(std::max<std::size_t>({1, r.steps, r.counts.accepted / bodies}));
 }
 
-void write_plots(const BenchOutcome& outcome, const std::filesystem::path& dir) {
-  std::vector<LogLogPlot> plots;
-  for (std::size_t s = 0; s < outcome.scenes.size(); ++s) {
-    const BenchScene& scene = outcome.scenes[s];
-    for (const ErrorMeasure& measure : plotted_measures()) {
-      LogLogPlot plot;
-      plot.file_stem = dir / (scene.label + "_" + measure.suffix);
-      plot.title = scene.name + ": " + measure.label + " against run time";
-      plot.x_label = "run time of the stepping loop (s, median)";
-      plot.y_label = measure.label;
-      // One line per integrator, its runs ordered by run time; blow-ups are left out.
-      for (const std::string& name : integrators_of(outcome, s)) {
-        PlotSeries series{name, {}};
-        for (std::size_t i = 0; i < outcome.cases.size(); ++i) {
-          const BenchCase& c = outcome.cases[i];
-          const CaseResult& r = outcome.results[i];
-          if (c.scene != s || c.integrator != name || r.blow_up_time) continue;
-          series.points.emplace_back(r.median_seconds, r.errors.*measure.field);
-        }
-        std::sort(series.points.begin(), series.points.end());
-        plot.series.push_back(std::move(series));
-      }
-      plots.push_back(std::move(plot));
-    }
-  }
-  draw_plots(plots, dir / "plots.gnuplot");
-}
-
-OrderFit observed_order(const BenchOutcome& outcome, std::size_t scene,
-                        const std::string& integrator) {
-  // Points (log step, log error) in the asymptotic range.
-  OrderFit fit;
-  std::vector<std::pair<double, double>> points;
-  std::vector<std::pair<double, double>> saturated;
-  for (std::size_t i = 0; i < outcome.cases.size(); ++i) {
-    const BenchCase& c = outcome.cases[i];
-    if (c.scene != scene || c.integrator != integrator) continue;
-    const CaseResult& r = outcome.results[i];
-    const double error = r.errors.orientation_final;
-    const std::pair<double, double> point{std::log(c.tolerance ? *c.tolerance : c.dt),
-                                          std::log(error)};
-    if (r.blow_up_time || !(error > kRoundingFloor)) {
-      ++fit.dropped;
-    } else if (!(error < kSaturation)) {
-      saturated.push_back(point);
-    } else {
-      points.push_back(point);
-    }
-  }
-  // Saturated runs are out of the asymptotic range, unless every run is: then the integrator
-  // does not converge on this sweep, and the fit over them all shows it (a slope near 0).
-  if (points.empty()) {
-    points = saturated;
-  } else {
-    fit.dropped += saturated.size();
-  }
-  fit.used = points.size();
-  if (points.size() < 2) return fit;
-  // Least squares slope.
+std::optional<double> least_squares_slope(const std::vector<std::pair<double, double>>& points) {
   double mx = 0.0, my = 0.0;
   for (const auto& [x, y] : points) {
     mx += x;
@@ -195,11 +138,72 @@ OrderFit observed_order(const BenchOutcome& outcome, std::size_t scene,
     sxx += (x - mx) * (x - mx);
     sxy += (x - mx) * (y - my);
   }
-  if (sxx > 0.0) fit.slope = sxy / sxx;
+  if (!(sxx > 0.0)) return std::nullopt;
+  return sxy / sxx;
+}
+
+}  // namespace
+
+OrderFit observed_order(const BenchOutcome& outcome, std::size_t scene,
+                        const std::string& integrator) {
+  // Points (log step, log error) in the asymptotic range.
+  OrderFit fit;
+  std::vector<std::pair<double, double>> points;
+  std::vector<std::pair<double, double>> saturated;
+  std::size_t at_floor = 0;
+  bool below_rounding_level = true;  // every fitted error below its run's rounding level
+  for (std::size_t i = 0; i < outcome.cases.size(); ++i) {
+    const BenchCase& c = outcome.cases[i];
+    if (c.scene != scene || c.integrator != integrator) continue;
+    const CaseResult& r = outcome.results[i];
+    const double error = r.errors.orientation_final;
+    const std::pair<double, double> point{std::log(c.tolerance ? *c.tolerance : c.dt),
+                                          std::log(error)};
+    if (r.blow_up_time || !(error > kRoundingFloor)) {
+      ++fit.dropped;
+      at_floor += !r.blow_up_time && !std::isnan(error);
+    } else if (!(error < kSaturation)) {
+      saturated.push_back(point);
+    } else {
+      points.push_back(point);
+      below_rounding_level =
+          below_rounding_level && error <= kRoundingPerStep * steps_per_body(outcome, i);
+    }
+  }
+  // Saturated runs are out of the asymptotic range, unless every run is: then the integrator
+  // does not converge on this sweep, and the fit over them all shows it (a slope near 0).
+  if (points.empty()) {
+    points = saturated;
+    below_rounding_level = saturated.empty();
+  } else {
+    fit.dropped += saturated.size();
+  }
+  fit.used = points.size();
+  if (points.size() < 2) {
+    fit.at_rounding = at_floor > 0 && below_rounding_level;
+    return fit;
+  }
+  fit.slope = least_squares_slope(points);
+  // Errors that do not fall as the step falls, all at their runs' rounding level: rounding,
+  // which grows with the number of steps, not a (negative) order.
+  if (fit.slope && !(*fit.slope > 0.0) && below_rounding_level) {
+    fit.slope.reset();
+    fit.at_rounding = true;
+  }
   return fit;
 }
 
 namespace {
+
+/// The runs of scene `s` whose final orientation error is exactly 0.
+std::size_t zero_error_runs(const BenchOutcome& outcome, std::size_t s) {
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < outcome.cases.size(); ++i) {
+    const CaseResult& r = outcome.results[i];
+    count += outcome.cases[i].scene == s && !r.blow_up_time && r.errors.orientation_final == 0.0;
+  }
+  return count;
+}
 
 /// The smallest non-zero final orientation error of scene `s` among the runs that did not
 /// blow up; infinity when there is none.
@@ -233,6 +237,10 @@ void scene_summary(std::ostream& out, const BenchOutcome& outcome, std::size_t s
           << number(smallest, "%.2e") << " rad): errors near that level are not resolved\n";
     }
   }
+  if (const std::size_t zeros = zero_error_runs(outcome, s)) {
+    out << "- " << zeros << " run" << (zeros == 1 ? " has" : "s have")
+        << " a final orientation error of exactly 0 (drawn at the floor marker in the plots)\n";
+  }
   out << "- invariants: energy " << (scene.conservative ? "is" : "is **not**") << ", |L| "
       << (scene.torque_free ? "is" : "is **not**")
       << " an invariant here (a drift of a non-invariant is not an error)\n\n";
@@ -240,16 +248,19 @@ void scene_summary(std::ostream& out, const BenchOutcome& outcome, std::size_t s
 
 /// The table of the runs of scene `s`.
 void runs_table(std::ostream& out, const BenchOutcome& outcome, std::size_t s) {
-  out << "| integrator | step | steps | time (s) | ns/step | orient. final (rad) | orient. max "
-         "(rad) | omega max | L max | energy drift | abs(L) drift |\n"
-      << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  out << "| integrator | step | steps | accepted + rejected | evaluations | time (s) | time "
+         "min - max (s) | ns/step | orient. final (rad) | orient. max (rad) | omega max | L max "
+         "| energy drift | abs(L) drift |\n"
+      << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (std::size_t i = 0; i < outcome.cases.size(); ++i) {
     const BenchCase& c = outcome.cases[i];
     if (c.scene != s) continue;
     const CaseResult& r = outcome.results[i];
     const double per_step = r.steps ? 1e9 * r.median_seconds / static_cast<double>(r.steps) : 0;
     out << "| " << c.integrator << " | " << step_text(c) << " | " << r.steps << " | "
-        << number(r.median_seconds, "%.3g") << " | " << number(per_step, "%.0f") << " | ";
+        << r.counts.accepted << " + " << r.counts.rejected << " | " << r.counts.evaluations << " | "
+        << number(r.median_seconds, "%.3g") << " | " << number(r.min_seconds, "%.3g") << " - "
+        << number(r.max_seconds, "%.3g") << " | " << number(per_step, "%.0f") << " | ";
     if (r.blow_up_time) {
       out << "blew up at t = " << number(*r.blow_up_time, "%.4g") << " s (" << r.blow_up_reason
           << ") | | | | | |\n";
@@ -269,18 +280,25 @@ void observed_order_table(std::ostream& out, const BenchOutcome& outcome, std::s
          "log(dt) (dopri: against log(tolerance)), over the runs with an error between "
       << number(kRoundingFloor, "%.0e") << " and " << number(kSaturation, "%.2g")
       << " rad that did not blow up (when every run is above " << number(kSaturation, "%.2g")
-      << " rad the integrator does not converge here, and all its runs are fitted). n/a: fewer "
-         "than two runs left, e.g. an integrator exact for this problem (free-rotor without "
-         "torques) sits at the rounding floor.\n\n| integrator | nominal order | observed | runs "
-         "used | "
-         "runs dropped |\n|---|---:|---:|---:|---:|\n";
+      << " rad the integrator does not converge here, and all its runs are fitted). "
+         "**n/a (rounding)**: the errors are at rounding, not a measure of the order: every run "
+         "at or below "
+      << number(kRoundingFloor, "%.0e")
+      << " rad, or the fitted errors do not fall as the step falls (slope <= 0) while each is "
+         "below its run's rounding level, 1e3 machine epsilons per step (n steps: "
+      << number(kRoundingPerStep, "%.1e")
+      << " n rad), e.g. free-rotor, exact without torques, whose rounding error grows with the "
+         "number of steps. n/a: fewer than two runs left.\n\n| integrator | nominal order | "
+         "observed | runs used | runs dropped |\n|---|---:|---:|---:|---:|\n";
   for (const std::string& name : integrators_of(outcome, s)) {
     const auto it = std::find_if(outcome.cases.begin(), outcome.cases.end(),
                                  [&](const BenchCase& c) { return c.integrator == name; });
     const OrderFit fit = observed_order(outcome, s, name);
+    const std::string observed = fit.slope         ? number(*fit.slope, "%.2f")
+                                 : fit.at_rounding ? "n/a (rounding)"
+                                                   : "n/a";
     out << "| " << name << " | " << it->order << (it->adaptive ? " (per tolerance: 1)" : "")
-        << " | " << (fit.slope ? number(*fit.slope, "%.2f") : "n/a") << " | " << fit.used << " | "
-        << fit.dropped << " |\n";
+        << " | " << observed << " | " << fit.used << " | " << fit.dropped << " |\n";
   }
 }
 
@@ -311,11 +329,17 @@ void fastest_table(std::ostream& out, const BenchOutcome& outcome, std::size_t s
 
 /// Links to the work-precision diagrams of a scene.
 void plot_links(std::ostream& out, const BenchScene& scene) {
-  out << "\n### Work-precision diagrams\n\n";
+  out << "\n### Work-precision diagrams\n\nEach measure against the run time (median of the "
+         "repeats, the bar from the fastest to the slowest) and against the right-hand-side "
+         "evaluations; one colour and marker per integrator in every plot. Blown-up runs are "
+         "left out; a run whose error is exactly 0 is drawn as an open triangle at the plot's "
+         "floor (a decade below its smallest non-zero error), which the plot names.\n\n";
   for (const ErrorMeasure& measure : plotted_measures()) {
     const std::string stem = scene.label + "_" + measure.suffix;
-    out << "- " << measure.label << ": [" << stem << ".svg](" << stem << ".svg)\n\n  ![" << stem
-        << "](" << stem << ".png)\n";
+    const std::string evaluations = stem + kEvaluationsSuffix;
+    out << "- " << measure.label << ": [" << stem << ".svg](" << stem << ".svg), against "
+        << "evaluations [" << evaluations << ".svg](" << evaluations << ".svg)\n\n  ![" << stem
+        << "](" << stem << ".png) ![" << evaluations << "](" << evaluations << ".png)\n";
   }
   out << "\n";
 }
@@ -338,7 +362,7 @@ void write_report(const BenchOutcome& outcome, const std::filesystem::path& file
          "grid), used as the warm-up, then "
       << outcome.repeat
       << " timed runs of the stepping loop alone (Simulation::step; no sampling, no output); "
-         "the time is their median.\n\n"
+         "the time is their median, with their min and max.\n\n"
       << "Ran on " << outcome.workers << " worker" << (outcome.workers == 1 ? "" : "s")
       << ", each pinned to its own core (cores";
   for (int core : outcome.cores_used) out << " " << core;
@@ -354,7 +378,15 @@ void write_report(const BenchOutcome& outcome, const std::filesystem::path& file
   for (std::size_t i = 0; i < results_columns().size(); ++i) {
     out << (i ? ", " : "") << "`" << results_columns()[i] << "`";
   }
-  out << " (times in s, errors in rad or relative, empty when the run blew up).\n\n";
+  out << " (times in s, errors in rad or relative, empty when the run blew up). "
+         "`accepted_steps`, `rejected_steps` and `evaluations` are summed over the scene's "
+         "bodies: one right-hand-side evaluation is one evaluation of the forces and the "
+         "rotational rate at one state (engine/PHYSICS.md §5), counted as if every body had "
+         "force terms; a fixed-step integrator makes its catalog figure per step (rk4 4, "
+         "splitting 2, splitting4 6, free-rotor 2, the Euler variants 1; midpoint's 2 is the "
+         "least its fixed-point solve takes), dopri counts its own (6 per attempt after the "
+         "first, its last stage reused). `seconds_median`, `seconds_min`, `seconds_max`: over "
+         "the `repeats` timed runs.\n\n";
   for (std::size_t s = 0; s < outcome.scenes.size(); ++s) scene_section(out, outcome, s);
   write_text_file(file, out.str());
 }

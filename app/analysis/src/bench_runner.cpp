@@ -16,7 +16,7 @@ namespace {
 
 /// Steps between two looks at `stop` inside a fixed-step run: rare enough to leave the timings
 /// alone (one call per 1024 steps of 50 ns or more), often enough to stop within milliseconds.
-/// An adaptive run looks after each of its output steps (about ten, each of many steps).
+/// An adaptive run looks after each of its output steps (it may take many steps in one).
 constexpr std::size_t kStopCheckSteps = 1024;
 
 std::size_t stop_check_steps(const BenchCase& c) {
@@ -67,9 +67,9 @@ std::optional<CaseResult> run_case(const BenchScene& scene, const BenchCase& c, 
   {
     engine::Simulation simulation = make_simulation(scene, c);
     result.total_steps = simulation.total_steps();
-    // Fixed steps divide the sampling interval (`ratio` steps per sample); adaptive runs take
-    // an output step of `stride` samples, so that their tolerance, not the output step, caps
-    // their step size.
+    // Fixed steps divide the sampling interval (`ratio` steps per sample); an output step may
+    // also span `stride` samples (bench gives adaptive runs the interval itself: dopri takes its
+    // own steps and interpolates the samples, engine/PHYSICS.md §3).
     const double interval = scene.grid.interval;
     const auto ratio = static_cast<std::size_t>(std::max(1LL, std::llround(interval / c.dt)));
     const auto stride = static_cast<std::size_t>(std::max(1LL, std::llround(c.dt / interval)));
@@ -85,6 +85,7 @@ std::optional<CaseResult> run_case(const BenchScene& scene, const BenchCase& c, 
       }
     }
     result.steps = simulation.steps();
+    result.counts = simulation.step_counts();
     if (const auto& blow_up = simulation.blow_up()) {
       result.blow_up_time = blow_up->time;
       result.blow_up_reason = blow_up->reason;
@@ -104,7 +105,11 @@ std::optional<CaseResult> run_case(const BenchScene& scene, const BenchCase& c, 
   std::vector<double> sorted = result.seconds;
   std::sort(sorted.begin(), sorted.end());
   const std::size_t n = sorted.size();
-  result.median_seconds = n % 2 == 1 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+  if (n > 0) {
+    result.median_seconds = n % 2 == 1 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+    result.min_seconds = sorted.front();
+    result.max_seconds = sorted.back();
+  }
   return result;
 }
 

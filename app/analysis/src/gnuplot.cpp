@@ -1,6 +1,7 @@
 #include "app/analysis/gnuplot.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -29,15 +30,26 @@ std::string shell_quoted(const std::string& text) {
   return out + "'";
 }
 
+bool drawable(const PlotPoint& p) {
+  return std::isfinite(p.x) && std::isfinite(p.y) && p.x > 0.0 && p.y >= 0.0;
+}
+
+/// The point type of the floor markers (an open triangle pointing down).
+constexpr int kFloorPointType = 10;
+
 /// The drawing commands of one plot (after `set terminal` and `set output`).
 void plot_commands(std::ostream& script, const LogLogPlot& plot, std::size_t index) {
   script << "set title " << quoted(plot.title) << " noenhanced\n"
          << "set xlabel " << quoted(plot.x_label) << " noenhanced\n"
          << "set ylabel " << quoted(plot.y_label) << " noenhanced\n";
   std::vector<std::size_t> drawn;
+  bool zeros = false;
   for (std::size_t s = 0; s < plot.series.size(); ++s) {
     std::size_t count = 0;
-    for (const auto& [x, y] : plot.series[s].points) count += x > 0.0 && y > 0.0;
+    for (const PlotPoint& p : plot.series[s].points) {
+      count += drawable(p);
+      zeros = zeros || (drawable(p) && p.y == 0.0);
+    }
     if (count > 0) drawn.push_back(s);
   }
   if (drawn.empty()) {
@@ -46,13 +58,42 @@ void plot_commands(std::ostream& script, const LogLogPlot& plot, std::size_t ind
            << "plot [1e-6:1] [1e-16:1] 1/0 notitle\nunset label 1\n";
     return;
   }
+  if (zeros) {
+    // The floor a third of a decade above the axis, so its markers show whole.
+    const double floor = zero_floor(plot);
+    char text[32];
+    std::snprintf(text, sizeof text, "%.0e", floor);
+    // In the right margin, under the key (a double-quoted string for its line breaks).
+    script << "set label 2 \"open triangles:\\nerror exactly 0,\\ndrawn at " << text
+           << "\" at graph 1.03, graph 0.12 left front noenhanced\nset yrange [" << floor / 2.0
+           << ":*]\n";
+  }
+  const char* with =
+      plot.x_error_bars ? "using 1:2:3:4 with xerrorlines" : "using 1:2 with linespoints";
   script << "plot ";
   for (std::size_t j = 0; j < drawn.size(); ++j) {
-    script << (j ? ", \\\n     " : "") << "$p" << index << "_" << drawn[j]
-           << " using 1:2 with linespoints pointtype " << (j % 13 + 1) << " title "
-           << quoted(plot.series[drawn[j]].title) << " noenhanced";
+    const PlotSeries& series = plot.series[drawn[j]];
+    const std::string block = "$p" + std::to_string(index) + "_" + std::to_string(drawn[j]);
+    const auto nonzero = std::count_if(series.points.begin(), series.points.end(),
+                                       [](const PlotPoint& p) { return drawable(p) && p.y > 0.0; });
+    const std::string title = " title " + quoted(series.title) + " noenhanced";
+    script << (j ? ", \\\n     " : "");
+    if (nonzero > 0) {
+      script << block << " " << with << " linecolor rgb " << quoted(series.style.colour)
+             << " pointtype " << series.style.point_type << title;
+    }
+    if (nonzero < static_cast<std::ptrdiff_t>(series.points.size()) &&
+        std::any_of(series.points.begin(), series.points.end(),
+                    [](const PlotPoint& p) { return drawable(p) && p.y == 0.0; })) {
+      // The series' zeros; they carry its title when it has nothing else to show.
+      script << (nonzero > 0 ? ", \\\n     " : "") << block
+             << "_zero using 1:2 with points linecolor rgb " << quoted(series.style.colour)
+             << " pointtype " << kFloorPointType << " pointsize 1.6"
+             << (nonzero > 0 ? " notitle" : title);
+    }
   }
   script << "\n";
+  if (zeros) script << "unset label 2\nset autoscale y\n";
 }
 
 /// The last `count` bytes of `file` (fewer when it is shorter); empty when it cannot be read.
@@ -101,15 +142,40 @@ bool gnuplot_available() {
   return std::system("gnuplot --version >/dev/null 2>&1") == 0;
 }
 
+double zero_floor(const LogLogPlot& plot) {
+  double smallest = INFINITY;
+  for (const PlotSeries& series : plot.series) {
+    for (const PlotPoint& p : series.points) {
+      if (drawable(p) && p.y > 0.0) smallest = std::min(smallest, p.y);
+    }
+  }
+  return std::isfinite(smallest) ? std::pow(10.0, std::floor(std::log10(smallest)) - 1.0) : 1e-16;
+}
+
 std::string gnuplot_script(const std::vector<LogLogPlot>& plots) {
   std::ostringstream script;
   script.precision(17);
-  // Data as named blocks, each series sorted as given (callers sort by run time).
+  // Data as named blocks, each series sorted as given (callers sort by x); its zeros in a
+  // block of their own, at the floor.
   for (std::size_t p = 0; p < plots.size(); ++p) {
+    const double floor = zero_floor(plots[p]);
     for (std::size_t s = 0; s < plots[p].series.size(); ++s) {
+      const std::vector<PlotPoint>& points = plots[p].series[s].points;
       script << "$p" << p << "_" << s << " << EOD\n";
-      for (const auto& [x, y] : plots[p].series[s].points) {
-        if (x > 0.0 && y > 0.0) script << x << " " << y << "\n";
+      for (const PlotPoint& point : points) {
+        if (!drawable(point) || point.y == 0.0) continue;
+        script << point.x << " " << point.y;
+        if (plots[p].x_error_bars) script << " " << point.x_low << " " << point.x_high;
+        script << "\n";
+      }
+      script << "EOD\n";
+      if (std::none_of(points.begin(), points.end(),
+                       [](const PlotPoint& q) { return drawable(q) && q.y == 0.0; })) {
+        continue;
+      }
+      script << "$p" << p << "_" << s << "_zero << EOD\n";
+      for (const PlotPoint& point : points) {
+        if (drawable(point) && point.y == 0.0) script << point.x << " " << floor << "\n";
       }
       script << "EOD\n";
     }

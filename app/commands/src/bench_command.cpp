@@ -35,9 +35,6 @@ namespace {
 
 using engine::InputError;
 
-/// Adaptive runs are sampled about this many times (their output step caps their step size).
-constexpr std::size_t kAdaptiveSamples = 10;
-
 /// A whole number in [minimum, ...] or an error naming the option.
 long long parse_count(const std::string& text, const char* option, long long minimum) {
   std::size_t used = 0;
@@ -198,9 +195,9 @@ void add_cases(const Sweep& sweep, const std::vector<BenchScene>& scenes,
     c.order = info->order;
     c.adaptive = info->adaptive;
     if (info->adaptive) {
-      // About kAdaptiveSamples samples: an output step of a whole number of intervals.
-      const std::size_t count = scenes.back().grid.count();
-      c.dt = interval * static_cast<double>(std::max<std::size_t>(1, count / kAdaptiveSamples));
+      // Sampled at the instants of the fixed-step runs: dopri interpolates them (dense output),
+      // its steps are its controller's whatever the output step.
+      c.dt = interval;
       for (double tolerance : sweep.tolerances) {
         c.tolerance = tolerance;
         cases.push_back(c);
@@ -340,7 +337,8 @@ CLI::App& add_bench_command(CLI::App& cli, BenchOptions& options) {
       "Simulated time T in s (default: the scene's)");
   bench.add_option_function<std::string>(
       "--repeat", [&](const std::string& v) { options.repeat = v; },
-      "Timed runs per case after the measured warm-up run; the median is kept (default 3)");
+      "Timed runs per case after the measured warm-up run; their median, min and max are kept "
+      "(default 3)");
   bench.add_option_function<std::string>(
       "--jobs", [&](const std::string& v) { options.jobs = v; },
       "Cases run in parallel, one pinned core each, capped at the cores (default 1)");

@@ -1,6 +1,7 @@
 #pragma once
 /// @file The integrator family: names, properties, and one stepper per body.
 
+#include <cstddef>
 #include <memory>
 #include <optional>
 #include <string>
@@ -35,6 +36,10 @@ struct IntegratorInfo {
   bool adaptive;           ///< takes --tolerance and sub-steps on its own
   bool needs_torque_free;  ///< refuses scenes with torques (the exact solution)
   std::string properties;  ///< one line: what it keeps and what it breaks
+  /// Right-hand-side evaluations per step (one evaluation: the forces and the rotational rate
+  /// at one state, whether or not the body has force terms; engine/PHYSICS.md §5); 0 for
+  /// steppers that count their own (dopri).
+  int evaluations_per_step = 0;
 };
 
 /// Every integrator, in the order --list-integrators shows them.
@@ -47,6 +52,14 @@ struct StepSettings {
   double tolerance = 1e-10;  ///< dopri: local error tolerance (relative and absolute)
 };
 
+/// What a stepper has done so far: accepted and rejected steps and right-hand-side
+/// evaluations (engine/PHYSICS.md §5).
+struct StepCounts {
+  std::size_t accepted = 0;
+  std::size_t rejected = 0;
+  std::size_t evaluations = 0;
+};
+
 /// Advances one body. Steppers may hold state (the adaptive step size, the exact solution's
 /// constants), so a run creates one per body. step() never throws: a failure shows up as a
 /// non-finite state, which the simulation detects.
@@ -55,6 +68,11 @@ class BodyStepper {
   virtual ~BodyStepper() = default;
   /// Advances `state` from time t to t + h.
   virtual void step(BodyState& state, double t, double h) = 0;
+  /// The counts since construction, for steppers that keep their own (dopri: its sub-steps and
+  /// rejections; an implicit method could count its solver's evaluations). nullopt: a fixed
+  /// step, one accepted step per call with the catalog's evaluations_per_step each
+  /// (Simulation::step_counts does that arithmetic).
+  virtual std::optional<StepCounts> counts() const { return std::nullopt; }
 };
 
 /// A stepper of `kind` for `body` starting from `initial` at t = 0. Throws InputError when the

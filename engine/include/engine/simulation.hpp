@@ -51,6 +51,10 @@ class Simulation {
   const std::optional<BlowUp>& blow_up() const { return blow_up_; }
   const SimulationSettings& settings() const { return settings_; }
 
+  /// The steppers' counts summed over the bodies (engine/PHYSICS.md §5): a stepper's own
+  /// (dopri), else one accepted step per call with the catalog's evaluations_per_step each.
+  StepCounts step_counts() const;
+
  private:
   std::vector<BodyModel> bodies_;
   std::vector<BodyState> initial_;

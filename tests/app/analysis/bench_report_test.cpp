@@ -13,7 +13,8 @@ namespace {
 
 /// Adds a run of `integrator` on `scene` at step `dt` whose final orientation error is `error`.
 void add_run(BenchOutcome& outcome, std::size_t scene, const std::string& integrator, double dt,
-             double error, std::optional<double> tolerance = std::nullopt, bool blew_up = false) {
+             double error, std::optional<double> tolerance = std::nullopt, bool blew_up = false,
+             std::size_t steps = 0) {
   BenchCase c;
   c.scene = scene;
   c.integrator = integrator;
@@ -21,6 +22,7 @@ void add_run(BenchOutcome& outcome, std::size_t scene, const std::string& integr
   c.tolerance = tolerance;
   outcome.cases.push_back(c);
   CaseResult r;
+  r.steps = steps;
   r.errors.orientation_final = error;
   if (blew_up) r.blow_up_time = 1.0;
   outcome.results.push_back(r);
@@ -116,6 +118,58 @@ TEST(ObservedOrder, FewerThanTwoPointsOrOneStepGiveNoSlope) {
   EXPECT_EQ(fit.used, 2u);
   EXPECT_FALSE(observed_order(outcome, 0, "midpoint").slope.has_value());
   EXPECT_EQ(observed_order(outcome, 0, "midpoint").used, 0u);
+}
+
+// Rounding: an integrator exact for the problem (free-rotor without torques) has errors that
+// grow with the number of steps (today's T-handle shows a "slope" of -1.07). Errors that do
+// not fall with the step while each is below 1e3 eps per step of its run are not an order.
+TEST(ObservedOrder, ErrorsGrowingWithTheStepsAtRoundingAreNotAnOrder) {
+  BenchOutcome outcome = two_scenes();
+  // 5 s at dt 0.04 ... 0.005: 125 ... 1000 steps, errors 1.6e-13 per step (below 2.2e-13).
+  for (const double dt : {0.04, 0.02, 0.01, 0.005}) {
+    const auto steps = static_cast<std::size_t>(std::lround(5.0 / dt));
+    add_run(outcome, 0, "free-rotor", dt, 1.6e-13 * static_cast<double>(steps), std::nullopt, false,
+            steps);
+  }
+  const OrderFit fit = observed_order(outcome, 0, "free-rotor");
+  EXPECT_FALSE(fit.slope.has_value());
+  EXPECT_TRUE(fit.at_rounding);
+  EXPECT_EQ(fit.used, 4u);
+  // The same trend ten times larger is above the rounding level: a (negative) slope it is.
+  BenchOutcome larger = two_scenes();
+  for (const double dt : {0.04, 0.02, 0.01, 0.005}) {
+    const auto steps = static_cast<std::size_t>(std::lround(5.0 / dt));
+    add_run(larger, 0, "free-rotor", dt, 1.6e-12 * static_cast<double>(steps), std::nullopt, false,
+            steps);
+  }
+  const OrderFit above = observed_order(larger, 0, "free-rotor");
+  ASSERT_TRUE(above.slope.has_value());
+  EXPECT_NEAR(*above.slope, -1.0, 1e-12);
+  EXPECT_FALSE(above.at_rounding);
+}
+
+TEST(ObservedOrder, ConvergingErrorsBelowTheRoundingLevelKeepTheirOrder) {
+  // Falling errors are an order even where they are small (the rule needs slope <= 0).
+  BenchOutcome outcome = two_scenes();
+  for (const double dt : {0.04, 0.02})
+    add_run(outcome, 0, "rk4", dt, 1e-7 * std::pow(dt / 0.04, 4), std::nullopt, false, 1000000);
+  const OrderFit fit = observed_order(outcome, 0, "rk4");
+  ASSERT_TRUE(fit.slope.has_value());
+  EXPECT_NEAR(*fit.slope, 4.0, 1e-12);
+  EXPECT_FALSE(fit.at_rounding);
+}
+
+TEST(ObservedOrder, EveryRunAtTheFloorOrExactlyZeroIsAtRounding) {
+  BenchOutcome outcome = two_scenes();
+  add_run(outcome, 0, "free-rotor", 0.04, 0.0);
+  add_run(outcome, 0, "free-rotor", 0.02, 3e-12);
+  const OrderFit fit = observed_order(outcome, 0, "free-rotor");
+  EXPECT_FALSE(fit.slope.has_value());
+  EXPECT_TRUE(fit.at_rounding);
+  EXPECT_EQ(fit.dropped, 2u);
+  // A lone run blown up is not rounding, just nothing to fit.
+  add_run(outcome, 0, "explicit-euler", 0.04, 0.0, std::nullopt, /*blew_up=*/true);
+  EXPECT_FALSE(observed_order(outcome, 0, "explicit-euler").at_rounding);
 }
 
 }  // namespace

@@ -107,6 +107,7 @@ TEST_F(BenchCommand, MeasuredOrdersMatchTheIntegrators) {
   }
   // free-rotor is exact without torques: every run at the rounding floor, no order to fit.
   EXPECT_FALSE(reported_order("free-rotor").has_value());
+  EXPECT_THAT(read_text(out() / "report.md"), HasSubstr("| free-rotor | 2 | n/a (rounding) |"));
   // dopri's error follows its tolerance (one decade per decade, roughly).
   const auto dopri = reported_order("dopri");
   ASSERT_TRUE(dopri.has_value());
@@ -127,6 +128,9 @@ TEST_F(BenchCommand, CsvHasEveryColumnAndOneRowPerRun) {
                                                   "duration",
                                                   "steps",
                                                   "total_steps",
+                                                  "accepted_steps",
+                                                  "rejected_steps",
+                                                  "evaluations",
                                                   "blew_up",
                                                   "blow_up_time",
                                                   "blow_up_reason",
@@ -152,8 +156,8 @@ TEST_F(BenchCommand, CsvHasEveryColumnAndOneRowPerRun) {
   for (const auto& row : csv.rows) {
     ++runs[row.at("integrator")];
     EXPECT_EQ(row.at("blew_up"), "0");
-    // Fixed steps: every 0.04 s over 4 s; dopri: every 0.4 s (its output step caps its steps).
-    EXPECT_EQ(row.at("samples"), row.at("integrator") == "dopri" ? "10" : "100");
+    // Every 0.04 s over 4 s, dopri too (dense output: the same instants for every run).
+    EXPECT_EQ(row.at("samples"), "100");
     if (row.at("integrator") != "dopri") dts.insert(row.at("dt"));
     EXPECT_EQ(row.at("repeats"), "1");
     EXPECT_GT(std::stod(row.at("seconds_median")), 0.0);
@@ -165,6 +169,49 @@ TEST_F(BenchCommand, CsvHasEveryColumnAndOneRowPerRun) {
   EXPECT_EQ(runs["dopri"], 3);
   EXPECT_EQ(dts.size(), 5u);  // 0.01 times 4, 2, 1, 1/2, 1/4
   EXPECT_EQ(runs.count("exact"), 0u);
+}
+
+TEST_F(BenchCommand, CountsAndTimingSpreadAreConsistent) {
+  ASSERT_EQ(result_.status, 0) << result_.err;
+  const Csv csv = read_csv(out() / "results.csv");
+  std::map<std::string, int> per_step;
+  for (const auto& info : engine::integrator_catalog())
+    per_step[info.name] = info.evaluations_per_step;
+  std::vector<unsigned long long> dopri_accepted;  // tolerances 1e-5, 1e-7, 1e-9
+  for (const auto& row : csv.rows) {
+    const std::string& name = row.at("integrator");
+    SCOPED_TRACE(name + " dt " + row.at("dt") + " tol " + row.at("tolerance"));
+    const auto steps = std::stoull(row.at("steps"));
+    const auto accepted = std::stoull(row.at("accepted_steps"));
+    const auto rejected = std::stoull(row.at("rejected_steps"));
+    const auto evaluations = std::stoull(row.at("evaluations"));
+    if (name == "dopri") {
+      // First same as last: six evaluations per attempt, one to start (one body).
+      EXPECT_EQ(evaluations, 6 * (accepted + rejected) + 1);
+      dopri_accepted.push_back(accepted);
+    } else {
+      EXPECT_EQ(steps,
+                400u / 4u * static_cast<unsigned>(std::lround(0.04 / std::stod(row.at("dt")))));
+      EXPECT_EQ(accepted, steps);  // one body
+      EXPECT_EQ(rejected, 0u);
+      EXPECT_EQ(evaluations, static_cast<unsigned long long>(per_step.at(name)) * steps);
+    }
+    // rk4 by the definition: 4 per step.
+    if (name == "rk4") {
+      EXPECT_EQ(evaluations, 4 * steps);
+    }
+    const double low = std::stod(row.at("seconds_min")),
+                 median = std::stod(row.at("seconds_median")),
+                 high = std::stod(row.at("seconds_max"));
+    EXPECT_LE(low, median);
+    EXPECT_LE(median, high);
+  }
+  // Its own steps: more as the tolerance falls (about 10^(2/5) per two decades), whatever the
+  // output step (the 100 samples).
+  ASSERT_EQ(dopri_accepted.size(), 3u);
+  EXPECT_GE(dopri_accepted[0], 5u);
+  EXPECT_GT(dopri_accepted[1], dopri_accepted[0]);
+  EXPECT_GT(dopri_accepted[2], dopri_accepted[1]);
 }
 
 TEST_F(BenchCommand, ErrorsFallAsTheStepFalls) {
@@ -206,6 +253,9 @@ TEST_F(BenchCommand, PlotsAreValidPngAndSvg) {
     EXPECT_NE(svg.find("<svg"), std::string::npos) << stem;
     EXPECT_NE(svg.find("</svg>"), std::string::npos) << stem;
     EXPECT_NE(svg.find("<text>explicit-euler</text>"), std::string::npos) << stem;  // legend
+    const std::string evaluations = read_text(out() / (stem + "_evaluations.png"));
+    EXPECT_EQ(evaluations.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << stem;
+    EXPECT_NE(read_text(out() / (stem + "_evaluations.svg")).find("</svg>"), std::string::npos);
   }
   EXPECT_FALSE(std::filesystem::exists(out() / "plots.gnuplot"));
 }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "app/analysis/bench_runner.hpp"
+#include "app/analysis/gnuplot.hpp"
 
 namespace tumble::app {
 
@@ -39,7 +40,18 @@ struct ErrorMeasure {
 };
 const std::vector<ErrorMeasure>& plotted_measures();
 
-/// Draws DIR/<scene>_<measure>.{png,svg} for every scene and measure (gnuplot).
+/// The suffix of the plots against right-hand-side evaluations: <scene>_<measure>_evaluations.
+inline constexpr const char* kEvaluationsSuffix = "_evaluations";
+
+/// The colour and marker of an integrator in every plot: fixed by its name (its catalog
+/// position), so the same in every plot of a run and across runs.
+PlotStyle integrator_style(const std::string& name);
+
+/// The plots of every scene and measure: against run time (DIR/<scene>_<measure>) and against
+/// evaluations (DIR/<scene>_<measure>_evaluations); exposed for tests.
+std::vector<LogLogPlot> bench_plots(const BenchOutcome& outcome, const std::filesystem::path& dir);
+
+/// Draws the bench_plots as .png and .svg (gnuplot).
 void write_plots(const BenchOutcome& outcome, const std::filesystem::path& dir);
 
 /// The observed order of one integrator on one scene.
@@ -47,15 +59,22 @@ struct OrderFit {
   std::optional<double> slope;  ///< of log error against log dt (log tolerance for dopri)
   std::size_t used = 0;         ///< runs in the fit
   std::size_t dropped = 0;      ///< blown up, at the rounding floor or saturated
+  /// The errors are at rounding (no slope then): every run at the floor, or the fitted errors
+  /// not falling with the step while each is below its run's rounding level.
+  bool at_rounding = false;
 };
 
 /// Errors at or below this are at the rounding floor (the order fit drops them), rad.
 inline constexpr double kRoundingFloor = 1e-11;
+/// The rounding level of a run of n steps per body: rounding errors accumulate about linearly
+/// with the steps, and 1e3 machine epsilons per step allow for the operations of a step, rad.
+inline constexpr double kRoundingPerStep = 1e3 * 2.220446049250313e-16;
 /// Orientation errors above this are out of the asymptotic range (the order fit drops them).
 inline constexpr double kSaturation = 0.5;
 
 /// Least-squares slope of log(final orientation error) against log(dt) over the runs of
-/// `integrator` on `scene` that lie in the asymptotic range.
+/// `integrator` on `scene` that lie in the asymptotic range; none when the errors are at
+/// rounding (see OrderFit::at_rounding).
 OrderFit observed_order(const BenchOutcome& outcome, std::size_t scene,
                         const std::string& integrator);
 

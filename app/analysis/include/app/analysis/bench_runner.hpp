@@ -47,8 +47,12 @@ struct CaseResult {
   std::size_t total_steps = 0;         ///< output steps the duration needs
   std::optional<double> blow_up_time;  ///< s, when the run blew up (no error figures then)
   std::string blow_up_reason;
+  engine::StepCounts
+      counts;  ///< of the measured run, summed over bodies (the timed runs repeat it)
   std::vector<double> seconds;  ///< the timed runs, stepping loop only
   double median_seconds = 0.0;
+  double min_seconds = 0.0;
+  double max_seconds = 0.0;
   ErrorFigures errors;
   int core = -1;  ///< the core the case ran on
 };

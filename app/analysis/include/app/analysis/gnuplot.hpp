@@ -9,10 +9,26 @@
 
 namespace tumble::app {
 
-/// One line with points of a plot.
+/// One point of a series, with an optional horizontal error bar [x_low, x_high].
+struct PlotPoint {
+  double x = 0.0;
+  double y = 0.0;
+  double x_low = 0.0;   ///< used when the plot has x_error_bars
+  double x_high = 0.0;  ///< used when the plot has x_error_bars
+};
+
+/// How a series is drawn: a gnuplot colour ('#rrggbb') and point type.
+struct PlotStyle {
+  std::string colour = "#000000";
+  int point_type = 1;
+};
+
+/// One line with points of a plot. Points with x <= 0, y < 0 or a non-finite value are left
+/// out; points with y exactly 0 are drawn at the plot's floor (zero_floor) with an open marker.
 struct PlotSeries {
   std::string title;
-  std::vector<std::pair<double, double>> points;  ///< (x, y); non-positive values are left out
+  std::vector<PlotPoint> points;
+  PlotStyle style;
 };
 
 /// A log-log plot written to `file_stem`.png and `file_stem`.svg.
@@ -22,7 +38,12 @@ struct LogLogPlot {
   std::string x_label;
   std::string y_label;
   std::vector<PlotSeries> series;
+  bool x_error_bars = false;  ///< draw [x_low, x_high] of every point
 };
+
+/// Where a plot draws its points whose y is exactly 0 (nothing to show on a log axis): a power
+/// of ten a decade below its smallest positive y (1e-16 when it has none).
+double zero_floor(const LogLogPlot& plot);
 
 /// A string as a gnuplot single-quoted literal.
 std::string gnuplot_quoted(const std::string& text);
