@@ -31,7 +31,9 @@ Simulation::Simulation(std::vector<BodyModel> bodies, std::vector<BodyState> ini
     // The steppers keep a reference to their body: bodies_ never reallocates after this.
     steppers_.push_back(make_stepper(settings_.integrator, bodies_[i], states_[i], step_settings));
     initial_energy_.push_back(energy(bodies_[i], states_[i]));
-    initial_energy_scale_.push_back(std::abs(initial_energy_.back()));
+    // Fixed from the initial state and free of the origin and of the potentials' zero (§6): a
+    // running scale would grow with a blowing-up run's own kinetic energy and hide it.
+    initial_energy_scale_.push_back(energy_scale(bodies_[i], states_[i], settings_.duration));
     initial_momentum_.push_back(states_[i].angular_momentum.norm());
   }
   initial_ = states_;
@@ -84,7 +86,7 @@ bool Simulation::step() {
       const double drift = std::abs(energy(body, next) - initial_energy_[i]);
       if (drift > (settings_.blowup_factor - 1.0) * initial_energy_scale_[i]) {
         reason = "energy drifted by " + times(drift / initial_energy_scale_[i]) +
-                 " its initial magnitude";
+                 " its scale (kinetic energy plus potential swings)";
       }
     }
     if (reason.empty() && body.torque_free() && initial_momentum_[i] > 0.0) {

@@ -13,6 +13,8 @@ const char* outcome_name(StabilityOutcome outcome) {
       return "drifting";
     case StabilityOutcome::kDamped:
       return "damped";
+    case StabilityOutcome::kWrong:
+      return "wrong";
     case StabilityOutcome::kBlewUp:
       return "blew up";
     case StabilityOutcome::kUnchecked:
@@ -23,8 +25,21 @@ const char* outcome_name(StabilityOutcome outcome) {
   return "?";
 }
 
-StabilityOutcome classify(bool blew_up, const InvariantChanges& changes, double threshold) {
+StabilityOutcome classify(bool blew_up, const InvariantChanges& changes, double threshold,
+                          const ReferenceErrors& errors) {
   if (blew_up) return StabilityOutcome::kBlewUp;
+  // Bounded but wrong: the state is far from the reference's, or the energy is.
+  const bool energy_wrong =
+      changes.energy_applies &&
+      std::max(changes.energy_max_gain, changes.energy_max_loss) > kWrongEnergyChange;
+  const auto beyond = [](const std::optional<double>& error, double limit) {
+    return error && *error > limit;
+  };
+  if (beyond(errors.orientation, kWrongOrientationError) ||
+      beyond(errors.momentum, kWrongMomentumError) ||
+      beyond(errors.position, kWrongPositionError) || energy_wrong) {
+    return StabilityOutcome::kWrong;
+  }
   if (!changes.energy_applies && !changes.momentum_applies) return StabilityOutcome::kUnchecked;
   const double gain = std::max(changes.energy_applies ? changes.energy_max_gain : 0.0,
                                changes.momentum_applies ? changes.momentum_max_gain : 0.0);

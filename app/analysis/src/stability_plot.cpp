@@ -24,6 +24,8 @@ long colour(StabilityOutcome outcome) {
       return 0xffbf00;
     case StabilityOutcome::kDamped:
       return 0x4a90d9;
+    case StabilityOutcome::kWrong:
+      return 0x9467bd;
     case StabilityOutcome::kBlewUp:
       return 0xd62728;
     case StabilityOutcome::kUnchecked:
@@ -34,9 +36,10 @@ long colour(StabilityOutcome outcome) {
   return 0xffffff;
 }
 
-constexpr StabilityOutcome kLegend[] = {StabilityOutcome::kStable,    StabilityOutcome::kDrifting,
-                                        StabilityOutcome::kDamped,    StabilityOutcome::kBlewUp,
-                                        StabilityOutcome::kUnchecked, StabilityOutcome::kSkipped};
+constexpr StabilityOutcome kLegend[] = {StabilityOutcome::kStable, StabilityOutcome::kDrifting,
+                                        StabilityOutcome::kDamped, StabilityOutcome::kWrong,
+                                        StabilityOutcome::kBlewUp, StabilityOutcome::kUnchecked,
+                                        StabilityOutcome::kSkipped};
 
 std::string quoted(const std::string& text) {
   return gnuplot_quoted(text);

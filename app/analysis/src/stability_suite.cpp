@@ -94,13 +94,17 @@ StabilityCase heavy_top(double duration, const std::vector<double>& rate_dts) {
   c.rate_label = "w3 dt";
   c.rate = spin;
   c.dts = steps_for(spin, rate_dts);
-  // L3 = I3 w3 is an invariant of its own, so the spin energy I3 w3^2 / 2 = 625 J never moves
-  // and would hide every drift: energy changes are measured against m g l, the energy the top
-  // trades between tilt, precession and nutation.
-  c.energy_scale = mass * g * l;
+  // The origin-free scale of engine/PHYSICS.md §6 less the spin energy L3^2 / (2 I3): L3 is an
+  // invariant of its own for the symmetric top, so those 625 J never move and would hide every
+  // drift. What is left is the energy the top trades between tilt, precession and nutation: the
+  // transverse kinetic energy (0 here) plus gravity's swing m g l (1 + cos tilt) = 9.59 J.
+  const double spin_momentum =
+      (c.initial[0].orientation.conjugate() * c.initial[0].angular_momentum).z();
+  c.energy_scale = engine::energy_scale(top, c.initial[0], duration) -
+                   spin_momentum * spin_momentum / (2.0 * top.moments.z());
   c.note =
-      "energy changes relative to m g l = 4.905 J (the spin energy I3 w3^2 / 2 = 625 J is "
-      "separately conserved and would hide every drift)";
+      "energy changes relative to the origin-free scale less the separately conserved spin "
+      "energy I3 w3^2 / 2 = 625 J: m g l (1 + cos 0.3) = 9.59 J";
   return c;
 }
 

@@ -128,10 +128,10 @@ std::vector<StabilityRun> run_sweep(const std::vector<StabilityCase>& cases,
 /// The counts of each outcome, and where the outputs went.
 void print_summary(const std::vector<StabilityRun>& runs, std::size_t case_count,
                    const fs::path& output, std::ostream& out) {
-  std::size_t counts[6] = {};
+  std::size_t counts[kStabilityOutcomeCount] = {};
   for (const StabilityRun& r : runs) ++counts[static_cast<int>(r.outcome)];
   out << "tumble stability: " << runs.size() << " runs over " << case_count << " cases: ";
-  for (int o = 0; o < 6; ++o) {
+  for (int o = 0; o < kStabilityOutcomeCount; ++o) {
     out << (o ? ", " : "") << counts[o] << " " << outcome_name(static_cast<StabilityOutcome>(o));
   }
   out << "\n  wrote " << (output / "stability.csv").string() << ", stability.md, stability.png, "

@@ -161,4 +161,14 @@ inline Eigen::Quaterniond renormalized(const Eigen::Quaterniond& q) {
 /// accurate for tiny angles, unlike acos).
 double orientation_angle(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b);
 
+/// An energy scale of the motion that depends neither on where the origin is nor on a
+/// potential's zero (engine/PHYSICS.md §6): the kinetic energy plus each potential's available
+/// swing, from `state` over a run of `duration` s. Springs: k/2 |P - a|^2 (their minimum is 0).
+/// Gravity on a pivoted body: U - U_min = m |g| l - m g . (R c), in [0, 2 m |g| l]. Gravity on
+/// a free body without springs: the translational kinetic energy is replaced by the largest the
+/// exact fall reaches over the run, m/2 max(|v|^2, |v + g duration|^2); with springs (total
+/// stiffness K) gravity adds its sag energy m^2 |g|^2 / K. Zero only for a body at rest with
+/// nothing to release.
+double energy_scale(const BodyModel& body, const BodyState& state, double duration);
+
 }  // namespace tumble::engine

@@ -17,15 +17,23 @@
 
 namespace tumble::app {
 
-/// The reference states at the end of a case, and what they come from ("none": no states).
+/// The case's reference motion sampled through the run, and what it comes from ("none": no
+/// samples).
 struct StabilityReference {
   std::string kind = "none";
-  std::vector<engine::BodyState> states;
+  double interval = 0.0;  ///< s between samples; the last sample is at the case's end
+  std::vector<std::vector<engine::BodyState>>
+      samples;                                 ///< [sample][body], at interval, 2 interval...
+  std::vector<engine::Invariants> invariants;  ///< per sample, summed over every body
+  /// The farthest any free body gets from its start over the samples, m (0: none moves).
+  double motion_range = 0.0;
 };
 
-/// The case's engine::ReferenceMotion at its end (the exact torque-free solution when every
-/// body is torque-free, else dopri at engine::kReferenceTolerance, with a hundred output
-/// steps); "none" when that run fails.
+/// The case's engine::ReferenceMotion (the exact torque-free solution when every body is
+/// torque-free, else dopri at engine::kReferenceTolerance) sampled every `interval`: duration /
+/// 100, or for a case whose steps all divide the largest one, the smallest multiple of that
+/// step not below duration / 100 (so that every run shares every sample). "none" when that run
+/// fails.
 StabilityReference stability_reference(const StabilityCase& c);
 
 /// What one run of the sweep found.
@@ -41,8 +49,13 @@ struct StabilityRun {
   InvariantChanges changes;  ///< all zero for the invariants that do not apply
   std::optional<double> blowup_time;
   std::string blowup_reason;
-  std::optional<double> orientation_error;  ///< rad, largest over the bodies
-  std::optional<double> position_error;     ///< m, largest over the bodies
+  /// The largest over the bodies and over the instants the run shares with the reference's
+  /// samples (always the end); measured when the run did not blow up and there is a reference.
+  std::optional<double> orientation_error;  ///< rad
+  std::optional<double> position_error;     ///< m
+  std::optional<double> momentum_error;     ///< |L - L_ref| / |L_ref| (world vector)
+  double motion_range = 0.0;                ///< StabilityReference::motion_range, m
+  std::size_t reference_instants = 0;       ///< how many instants were compared
   std::string reference;                    ///< StabilityReference::kind
   double wall_seconds = 0.0;                ///< the stepping loop
   std::string note;                         ///< why a skipped run was not made
@@ -51,8 +64,8 @@ struct StabilityRun {
 
 /// Runs case `c` under `info` at step `dt`. Skipped (with the reason in `note`) when the case
 /// names other integrators or the simulation cannot be built (the exact solution on a forced
-/// case); the errors at the end are measured only when the run did not blow up and `reference`
-/// has states. `stop`, when given, is asked every kStopCheckSteps steps; when it says so the
+/// case); the errors are measured only when the run did not blow up and `reference` has
+/// samples. `stop`, when given, is asked every kStopCheckSteps steps; when it says so the
 /// run ends there with `stopped` set.
 StabilityRun run_stability_case(const StabilityCase& c, const engine::IntegratorInfo& info,
                                 double dt, const StabilityReference& reference,
