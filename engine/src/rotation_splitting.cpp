@@ -14,19 +14,27 @@
 // - free-rotor: the exact torque-free flow in the middle (Celledoni, Fasso, Safstrom, Zanna,
 //   SIAM J. Sci. Comput. 30 (2008)): exact for free bodies, 2nd order with torques.
 // - exact: the torque-free solution from the initial state, evaluated at each time.
-// Velocity-dependent forces (spring damping) are kicked explicitly, which makes those terms
-// first order; everything conservative keeps the stated order.
+// The kick is exact: with x and q frozen, forces that depend on x and q only (gravity,
+// constant torques, undamped springs) are constant, so v += a h/2, L += tau h/2 is their flow;
+// with spring damping the kick is a linear ODE in (v, L), whose exact flow damped_kick()
+// takes (damped_kick.cpp). Every sub-flow is then symmetric and each method keeps its order.
 #include <cmath>
 
+#include "damped_kick.hpp"
 #include "engine/torque_free_exact.hpp"
 #include "steppers.hpp"
 
 namespace tumble::engine::steppers {
 namespace {
 
-/// Half kick: v and world L from the forces and torques at `s`.
-void kick(const BodyModel& body, BodyState& s, double half_step) {
+/// Half kick: v and world L from the forces and torques at `s`; `damped` (has_damping(),
+/// decided once per stepper) takes the exact flow of the velocity-dependent kick instead.
+void kick(const BodyModel& body, BodyState& s, double half_step, bool damped) {
   if (body.forces.empty()) return;
+  if (damped) {
+    damped_kick(body, s, half_step);
+    return;
+  }
   const Rates r = rates(body, s);
   s.velocity += half_step * r.acceleration;
   s.angular_momentum += half_step * r.torque;
@@ -65,7 +73,10 @@ void split_rotation(const Eigen::Vector3d& inverse_moments, BodyState& s, double
 class Splitting final : public BodyStepper {
  public:
   Splitting(const BodyModel& body, int order)
-      : body_(body), inverse_moments_(body.moments.cwiseInverse()), order_(order) {}
+      : body_(body),
+        inverse_moments_(body.moments.cwiseInverse()),
+        order_(order),
+        damped_(has_damping(body)) {}
   void step(BodyState& s, double, double h) override {
     if (order_ == 2) {
       second_order(s, h);
@@ -82,32 +93,34 @@ class Splitting final : public BodyStepper {
 
  private:
   void second_order(BodyState& s, double h) const {
-    kick(body_, s, 0.5 * h);
+    kick(body_, s, 0.5 * h, damped_);
     if (!body_.pivoted) s.position += h * s.velocity;
     split_rotation(inverse_moments_, s, h);
-    kick(body_, s, 0.5 * h);
+    kick(body_, s, 0.5 * h, damped_);
   }
 
   const BodyModel& body_;
   Eigen::Vector3d inverse_moments_;
   int order_;
+  bool damped_;
 };
 
 class FreeRotor final : public BodyStepper {
  public:
-  explicit FreeRotor(const BodyModel& body) : body_(body) {}
+  explicit FreeRotor(const BodyModel& body) : body_(body), damped_(has_damping(body)) {}
   void step(BodyState& s, double, double h) override {
-    kick(body_, s, 0.5 * h);
+    kick(body_, s, 0.5 * h, damped_);
     if (!body_.pivoted) s.position += h * s.velocity;
     const Eigen::Vector3d omega_body =
         (s.orientation.conjugate() * s.angular_momentum).cwiseQuotient(body_.moments);
     const TorqueFreeMotion flow(body_.moments, s.orientation, omega_body);
     s.orientation = flow.at(h).orientation;  // world L is constant along the flow
-    kick(body_, s, 0.5 * h);
+    kick(body_, s, 0.5 * h, damped_);
   }
 
  private:
   const BodyModel& body_;
+  bool damped_;
 };
 
 class Exact final : public BodyStepper {
