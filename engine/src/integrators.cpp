@@ -164,7 +164,7 @@ const std::vector<IntegratorInfo>& integrator_catalog() {
       {K::kRk4, "rk4", 4, false, false,
        "classical RK4, Munthe-Kaas form on the rotation group (4th order in orientation too)"},
       {K::kMidpoint, "midpoint", 2, false, false,
-       "implicit midpoint, symmetric; keeps energy, |L| and |q| of the free body exactly"},
+       "implicit midpoint (Newton), symmetric; keeps energy, |L| and |q| of the free body exactly"},
       {K::kSplitting, "splitting", 2, false, false,
        "explicit symplectic rotation splitting (Dullweber-Leimkuhler-McLachlan); world L exact"},
       {K::kSplitting4, "splitting4", 4, false, false,
