@@ -25,43 +25,37 @@ Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& v) {
   return m;
 }
 
-/// Free body: y = (v, L), augmented to 7 by the constant.
-void free_kick(const BodyModel& body, BodyState& s, double t, const Wrench& constant,
-               const Eigen::Matrix3d& inverse_inertia) {
+/// The augmented matrix [[M, b], [0, 0]] of the kick at s: free, y = (v, L, 1) (7); pivoted,
+/// y = (L, 1) (4, top-left).
+Eigen::Matrix<double, 7, 7> kick_matrix(const BodyModel& body, const BodyState& s) {
+  // The constant part: the wrench with the body at rest (no velocity-dependent force).
+  BodyState at_rest = s;
+  at_rest.velocity.setZero();
+  at_rest.angular_momentum.setZero();
+  const Wrench constant = wrench(body, at_rest, Eigen::Vector3d::Zero());
+  const Eigen::Matrix3d rotation = s.orientation.toRotationMatrix();
+  const Eigen::Matrix3d inverse_inertia =
+      rotation * body.moments.cwiseInverse().asDiagonal() * rotation.transpose();
   Eigen::Matrix<double, 7, 7> a = Eigen::Matrix<double, 7, 7>::Zero();
+  const int l = body.pivoted ? 0 : 3;  // where L starts
   for (const ForceTerm& term : body.forces) {
     const auto* spring = std::get_if<Spring>(&term);
     if (spring == nullptr || spring->damping == 0.0) continue;
     const Eigen::Matrix3d arm = cross_matrix(s.orientation * spring->attach);
     const double c = spring->damping;
+    a.block<3, 3>(l, l) += c * arm * arm * inverse_inertia;
+    if (body.pivoted) continue;  // v is derived: no translation
     a.block<3, 3>(0, 0).diagonal().array() -= c / body.mass;
     a.block<3, 3>(0, 3) += (c / body.mass) * arm * inverse_inertia;
     a.block<3, 3>(3, 0) -= c * arm;
-    a.block<3, 3>(3, 3) += c * arm * arm * inverse_inertia;
   }
-  a.block<3, 1>(0, 6) = constant.force / body.mass;
-  a.block<3, 1>(3, 6) = constant.torque;
-  const Eigen::Matrix<double, 7, 7> flow = (t * a).exp();
-  Eigen::Matrix<double, 7, 1> y;
-  y << s.velocity, s.angular_momentum, 1.0;
-  const Eigen::Matrix<double, 7, 1> next = flow * y;
-  s.velocity = next.segment<3>(0);
-  s.angular_momentum = next.segment<3>(3);
-}
-
-/// Pivoted body: y = L, augmented to 4.
-void pivoted_kick(const BodyModel& body, BodyState& s, double t, const Wrench& constant,
-                  const Eigen::Matrix3d& inverse_inertia) {
-  Eigen::Matrix4d a = Eigen::Matrix4d::Zero();
-  for (const ForceTerm& term : body.forces) {
-    const auto* spring = std::get_if<Spring>(&term);
-    if (spring == nullptr || spring->damping == 0.0) continue;
-    const Eigen::Matrix3d arm = cross_matrix(s.orientation * spring->attach);
-    a.block<3, 3>(0, 0) += spring->damping * arm * arm * inverse_inertia;
+  if (body.pivoted) {
+    a.block<3, 1>(0, 3) = constant.torque;
+  } else {
+    a.block<3, 1>(0, 6) = constant.force / body.mass;
+    a.block<3, 1>(3, 6) = constant.torque;
   }
-  a.block<3, 1>(0, 3) = constant.torque;
-  const Eigen::Matrix4d flow = (t * a).exp();
-  s.angular_momentum = flow.block<3, 3>(0, 0) * s.angular_momentum + flow.block<3, 1>(0, 3);
+  return a;
 }
 
 }  // namespace
@@ -74,19 +68,35 @@ bool has_damping(const BodyModel& body) {
   return false;
 }
 
-void damped_kick(const BodyModel& body, BodyState& s, double t) {
-  // The constant part: the wrench with the body at rest (no velocity-dependent force).
-  BodyState at_rest = s;
-  at_rest.velocity.setZero();
-  at_rest.angular_momentum.setZero();
-  const Wrench constant = wrench(body, at_rest, Eigen::Vector3d::Zero());
-  const Eigen::Matrix3d rotation = s.orientation.toRotationMatrix();
-  const Eigen::Matrix3d inverse_inertia =
-      rotation * body.moments.cwiseInverse().asDiagonal() * rotation.transpose();
+void damped_kick(const BodyModel& body, BodyState& s, double t, KickFlowCache* cache) {
+  // The kick depends on t, q and (free bodies) x: the key of the cache, compared exactly.
+  const Eigen::Vector4d orientation = s.orientation.coeffs();
+  const Eigen::Vector3d position = body.pivoted ? Eigen::Vector3d::Zero() : s.position;
+  KickFlowCache local;
+  KickFlowCache& flow = cache != nullptr ? *cache : local;
+  if (!(flow.valid && flow.t == t && flow.position == position &&
+        flow.orientation == orientation)) {
+    const Eigen::Matrix<double, 7, 7> a = kick_matrix(body, s);
+    if (body.pivoted) {
+      flow.flow.topLeftCorner<4, 4>() = (t * a.topLeftCorner<4, 4>()).eval().exp();
+    } else {
+      flow.flow = (t * a).exp();
+    }
+    flow.valid = true;
+    flow.t = t;
+    flow.position = position;
+    flow.orientation = orientation;
+  }
   if (body.pivoted) {
-    pivoted_kick(body, s, t, constant, inverse_inertia);
+    s.angular_momentum =
+        flow.flow.topLeftCorner<3, 3>() * s.angular_momentum + flow.flow.block<3, 1>(0, 3);
   } else {
-    free_kick(body, s, t, constant, inverse_inertia);
+    const Eigen::Matrix<double, 6, 1> y =
+        flow.flow.topLeftCorner<6, 6>() *
+            (Eigen::Matrix<double, 6, 1>() << s.velocity, s.angular_momentum).finished() +
+        flow.flow.block<6, 1>(0, 6);
+    s.velocity = y.head<3>();
+    s.angular_momentum = y.tail<3>();
   }
 }
 

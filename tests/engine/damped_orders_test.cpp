@@ -220,5 +220,26 @@ TEST(DampedKick, VanishingDampingIsTheConstantKick) {
   EXPECT_FALSE(steppers::has_damping(c.body));
 }
 
+// The cached flow is reused only for the same x, q and t: a kick at another orientation, or
+// over another time, with the cache filled gives what a fresh kick gives, bit for bit.
+TEST(DampedKick, CachedFlowOnlyForTheSameConfigurationAndTime) {
+  const Case c = free_case(true);
+  steppers::KickFlowCache cache;
+  BodyState first = c.start;
+  steppers::damped_kick(c.body, first, 0.05, &cache);
+  ASSERT_TRUE(cache.valid);
+  BodyState turned = c.start;
+  turned.orientation =
+      Eigen::Quaterniond(Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitZ())) * c.start.orientation;
+  for (const auto& [state, t] : {std::pair{c.start, 0.05}, std::pair{c.start, 0.04},
+                                 std::pair{turned, 0.05}, std::pair{first, 0.05}}) {
+    BodyState cached = state, fresh = state;
+    steppers::damped_kick(c.body, cached, t, &cache);
+    steppers::damped_kick(c.body, fresh, t);
+    EXPECT_EQ(cached.velocity, fresh.velocity);
+    EXPECT_EQ(cached.angular_momentum, fresh.angular_momentum);
+  }
+}
+
 }  // namespace
 }  // namespace tumble::engine
