@@ -170,8 +170,9 @@ class Midpoint final : public BodyStepper {
     // simplified Newton step, Hairer and Wanner, "Solving ODEs II", 1996, IV.8: at small steps
     // the Jacobian barely changes over the solve) and evaluated afresh at the current iterate
     // otherwise. Stop once the update is at rounding level: below 1e-14 of the state (the
-    // error left after it is far smaller), or no longer shrinking while below 1e-10 of it
-    // (rounding noise of an ill-conditioned solve). A solve that does not converge (its last
+    // error left after it is far smaller), or the error it leaves estimated below 1e-16 of the
+    // state, or no longer shrinking while below 1e-10 of it (rounding noise of an
+    // ill-conditioned solve). A solve that does not converge (its last
     // update above 1e-9 of the state after kMaxIterations) or reaches a non-finite state hands
     // back NaN, which the simulation reports.
     Vector13 y = y0;
@@ -192,7 +193,12 @@ class Midpoint final : public BodyStepper {
       ++newton_iterations_;
       const double change = delta.lpNorm<Eigen::Infinity>();
       const double scale = y.lpNorm<Eigen::Infinity>();
-      converged = change <= 1e-14 * scale || (change >= last_change && change <= 1e-10 * scale);
+      // The error left after an update contracting by theta is about theta / (1 - theta) of
+      // it (Hairer and Wanner, IV.8).
+      const double theta = iteration > 0 ? change / last_change : 1.0;
+      converged = change <= 1e-14 * scale ||
+                  (theta < 0.5 && theta / (1.0 - theta) * change <= 1e-16 * scale) ||
+                  (change >= last_change && change <= 1e-10 * scale);
       refresh = !(change <= 0.1 * last_change);
       last_change = change;
     }
