@@ -158,11 +158,51 @@ Matrix13 rate_jacobian(const BodyModel& body, const Vector13& y) {
 
 namespace {
 
+/// The factorised Newton matrix I - h/2 df/dy. Only a spring on a free body couples the
+/// translation (x, v) with the rotation (q, L_b) in df/dy; without one the matrix is block
+/// diagonal, the rotation block is factorised alone (7 x 7 instead of 13 x 13, several times
+/// cheaper), and the translation block, [[I, -h/2 I], [0, I]] (free: dx/dt = v, dv/dt
+/// constant) or I (pivoted: x and v are derived), is solved directly.
+class NewtonMatrix {
+ public:
+  using Matrix13 = implicit_midpoint::Matrix13;
+  using Vector13 = implicit_midpoint::Vector13;
+
+  explicit NewtonMatrix(const BodyModel& body) : pivoted_(body.pivoted) {
+    for (const ForceTerm& term : body.forces) {
+      if (std::holds_alternative<Spring>(term) && !body.pivoted) coupled_ = true;
+    }
+  }
+  void factorise(const Matrix13& jacobian, double h) {
+    h_ = h;
+    if (coupled_) {
+      full_.compute(Matrix13::Identity() - (0.5 * h) * jacobian);
+    } else {
+      rotation_.compute(Eigen::Matrix<double, 7, 7>::Identity() -
+                        (0.5 * h) * jacobian.bottomRightCorner<7, 7>());
+    }
+  }
+  Vector13 solve(const Vector13& residual) const {
+    if (coupled_) return full_.solve(residual);
+    Vector13 delta;
+    delta.tail<7>() = rotation_.solve(residual.tail<7>());
+    delta.segment<3>(3) = residual.segment<3>(3);
+    delta.head<3>() = residual.head<3>() + (pivoted_ ? 0.0 : 0.5 * h_) * delta.segment<3>(3);
+    return delta;
+  }
+
+ private:
+  bool pivoted_;
+  bool coupled_ = false;
+  double h_ = 0.0;
+  Eigen::PartialPivLU<Matrix13> full_;
+  Eigen::PartialPivLU<Eigen::Matrix<double, 7, 7>> rotation_;
+};
+
 class Midpoint final : public BodyStepper {
  public:
-  explicit Midpoint(const BodyModel& body) : body_(body) {}
+  explicit Midpoint(const BodyModel& body) : body_(body), newton_matrix_(body) {}
   void step(BodyState& s, double, double h) override {
-    using implicit_midpoint::Matrix13;
     using implicit_midpoint::Vector13;
     const Vector13 y0 = implicit_midpoint::pack(s);
     // Newton on g(y) = y - y0 - h f((y0 + y) / 2), dg/dy = I - h/2 df/dy, from y = y0. The
@@ -176,7 +216,6 @@ class Midpoint final : public BodyStepper {
     // update above 1e-9 of the state after kMaxIterations) or reaches a non-finite state hands
     // back NaN, which the simulation reports.
     Vector13 y = y0;
-    Eigen::PartialPivLU<Matrix13> newton_matrix;
     bool refresh = true;
     double last_change = INFINITY;
     bool converged = false;
@@ -184,11 +223,10 @@ class Midpoint final : public BodyStepper {
       const Vector13 mid = 0.5 * (y0 + y);
       const Vector13 residual = y - y0 - h * implicit_midpoint::rate(body_, mid);
       if (refresh) {
-        newton_matrix.compute(Matrix13::Identity() -
-                              (0.5 * h) * implicit_midpoint::rate_jacobian(body_, mid));
+        newton_matrix_.factorise(implicit_midpoint::rate_jacobian(body_, mid), h);
         ++jacobian_evaluations_;
       }
-      const Vector13 delta = newton_matrix.solve(residual);
+      const Vector13 delta = newton_matrix_.solve(residual);
       y -= delta;
       ++newton_iterations_;
       const double change = delta.lpNorm<Eigen::Infinity>();
@@ -221,6 +259,7 @@ class Midpoint final : public BodyStepper {
   static constexpr int kMaxIterations = 50;
 
   const BodyModel& body_;
+  NewtonMatrix newton_matrix_;
   long long newton_iterations_ = 0;
   long long jacobian_evaluations_ = 0;
 };

@@ -122,6 +122,30 @@ TEST(MidpointNewton, StiffSpringHeldToHundredTimesTheFixedPointLimit) {
   }
 }
 
+// Without a spring the translation decouples from the rotation and is solved on its own: under
+// gravity the rule is exact for the constant acceleration, x = x0 + v0 t + g t^2 / 2, whatever
+// the torques do to the rotation.
+TEST(MidpointNewton, FreeFallIsExactBesideTheTorques) {
+  BodyModel body = forced_body(false);
+  body.forces.erase(body.forces.begin() + 1, body.forces.begin() + 3);  // the springs
+  const Eigen::Vector3d g = std::get<Gravity>(body.forces[0]).acceleration;
+  BodyState start = spinning_state(body, kOrientation, Eigen::Vector3d(0.4, -0.8, 1.6));
+  start.position = Eigen::Vector3d(0.6, 0.2, 0.5);
+  start.velocity = Eigen::Vector3d(0.1, -0.3, 2.0);
+  SimulationSettings settings;
+  settings.integrator = K::kMidpoint;
+  settings.dt = 0.05;
+  settings.duration = 2.0;
+  Simulation sim({body}, {start}, settings);
+  while (!sim.finished()) sim.step();
+  ASSERT_FALSE(sim.blow_up().has_value());
+  const double t = sim.time();
+  const BodyState& s = sim.states()[0];
+  EXPECT_LT((s.position - (start.position + t * start.velocity + 0.5 * t * t * g)).norm(), 1e-12);
+  EXPECT_LT((s.velocity - (start.velocity + t * g)).norm(), 1e-12);
+  EXPECT_GT(orientation_angle(s.orientation, start.orientation), 0.1);
+}
+
 // Order 2 with every kind of force (damped springs, torques, gravity) on a free and a pivoted
 // body, against dopri at engine::kReferenceTolerance; the error is the larger of the
 // orientation angle and the relative error of world L.
