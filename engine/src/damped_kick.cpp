@@ -10,7 +10,7 @@
 // exact flow over t is the matrix exponential of the augmented matrix [[M, b], [0, 0]] t (Van
 // Loan, "Computing integrals involving the matrix exponential", IEEE Trans. Automat. Control 23
 // (1978)): exp gives [[e^(Mt), int_0^t e^(Ms) ds b], [0, 1]]. With a single damped spring (a
-// scene's case) M has rank 3 and the flow comes from the eigenvalues of a symmetric 3 x 3
+// scene's case) M has rank 3 and the flow comes from phi functions of a symmetric 3 x 3
 // matrix instead (one_spring_flow), several times cheaper. An exact flow is symmetric
 // (its flow over -t is its inverse), so the kick-drift-kick compositions stay symmetric, and
 // Strang splitting keeps order 2 and Yoshida's triple jump order 4 with damping.
