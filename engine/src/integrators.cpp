@@ -205,7 +205,9 @@ const std::vector<IntegratorInfo>& integrator_catalog() {
       {K::kRk4, "rk4", 4, false, false,
        "classical RK4, Munthe-Kaas form on the rotation group (4th order in orientation too)", 4},
       {K::kMidpoint, "midpoint", 2, false, false,
-       "implicit midpoint, symmetric; keeps energy, |L| and |q| of the free body exactly", 2},
+       "implicit midpoint (Newton), symmetric; keeps energy, |L| and |q| of the free body "
+       "exactly",
+       2},
       {K::kSplitting, "splitting", 2, false, false,
        "explicit symplectic rotation splitting (Dullweber-Leimkuhler-McLachlan); world L exact", 2},
       {K::kSplitting4, "splitting4", 4, false, false,

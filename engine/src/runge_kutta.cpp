@@ -1,4 +1,5 @@
-// The Runge-Kutta family: rk4 (on the rotation group), implicit midpoint, adaptive dopri.
+// The Runge-Kutta family: rk4 (on the rotation group), adaptive dopri (the implicit midpoint
+// rule is in implicit_midpoint.cpp).
 //
 // rk4 is the Runge-Kutta-Munthe-Kaas method (Munthe-Kaas, "High order Runge-Kutta methods on
 // manifolds", Appl. Numer. Math. 29 (1999)) with the classical tableau: the orientation is
@@ -7,10 +8,6 @@
 // dexp^-1_Theta(w) = w - 1/2 Theta x w + 1/12 Theta x (Theta x w). Each stage turns q by an
 // exponential map, so the method is 4th order in orientation, unlike RK4 on Euler angles or
 // a quaternion update followed by normalisation of a 2nd-order rotation.
-//
-// midpoint is the implicit midpoint rule on (x, v, q, L_body): energy, |L| and |q| are
-// quadratic invariants of the free body and it keeps all three exactly; solved by fixed-point
-// iteration to rounding.
 //
 // dopri is Dormand and Prince's embedded 5(4) pair (J. Comput. Appl. Math. 6 (1980)) on
 // (x, v, q, L) with q as four numbers, renormalised after each accepted step, and the usual
@@ -96,59 +93,6 @@ Eigen::Vector4d quaternion_rate(const Eigen::Quaterniond& q, const Eigen::Vector
   const Eigen::Quaterniond product = body ? q * pure : pure * q;
   return 0.5 * Eigen::Vector4d(product.w(), product.x(), product.y(), product.z());
 }
-
-class Midpoint final : public BodyStepper {
- public:
-  explicit Midpoint(const BodyModel& body) : body_(body) {}
-  void step(BodyState& s, double, double h) override {
-    // Unknowns: x, v, q, and the body-frame momentum L_b.
-    const Vector13 y0 = pack(s, s.orientation.conjugate() * s.angular_momentum);
-    // Fixed-point iteration y <- y0 + h f((y0 + y)/2); it contracts by about h |df/dy| / 2 a
-    // sweep. The change need not shrink every sweep (for an oscillator the iteration error
-    // turns as it shrinks), so stop only once it is at rounding level: below 1e-15 of the
-    // state, or no longer shrinking while below 1e-12 of it (rounding noise).
-    // Near the edge of its convergence (h |df/dy| / 2 -> 1) it needs many sweeps; a solve that
-    // does not converge hands back a non-finite state, which the simulation reports.
-    Vector13 y = y0 + h * rate(y0);
-    double last_change = INFINITY;
-    bool converged = false;
-    for (int iteration = 0; iteration < 4000 && !converged; ++iteration) {
-      const Vector13 next = y0 + h * rate(0.5 * (y0 + y));
-      const double change = (next - y).lpNorm<Eigen::Infinity>();
-      const double scale = next.lpNorm<Eigen::Infinity>();
-      y = next;
-      converged = !(change > 1e-15 * scale) || (change >= last_change && change <= 1e-12 * scale);
-      last_change = change;
-    }
-    if (!converged && !(last_change <= 1e-9 * y.lpNorm<Eigen::Infinity>())) y.setConstant(NAN);
-    if (!body_.pivoted) {
-      s.position = y.segment<3>(0);
-      s.velocity = y.segment<3>(3);
-    }
-    s.orientation = quaternion_of(y).normalized();
-    s.angular_momentum = s.orientation * Eigen::Vector3d(y.segment<3>(10));
-  }
-
- private:
-  Vector13 rate(const Vector13& y) const {
-    const Eigen::Quaterniond q = quaternion_of(y);
-    const Eigen::Vector3d momentum_body = y.segment<3>(10);
-    BodyState state;
-    state.position = y.segment<3>(0);
-    state.velocity = y.segment<3>(3);
-    state.orientation = q.normalized();
-    state.angular_momentum = state.orientation * momentum_body;
-    const Rates r = rates(body_, state);
-    const Eigen::Vector3d omega_body = momentum_body.cwiseQuotient(body_.moments);
-    Vector13 out;
-    out << (body_.pivoted ? Eigen::Vector3d::Zero() : state.velocity), r.acceleration,
-        quaternion_rate(q, omega_body, true),
-        momentum_body.cross(omega_body) + state.orientation.conjugate() * r.torque;
-    return out;
-  }
-
-  const BodyModel& body_;
-};
 
 class Dopri final : public BodyStepper {
  public:
@@ -331,9 +275,6 @@ class Dopri final : public BodyStepper {
 
 std::unique_ptr<BodyStepper> make_rk4(const BodyModel& body) {
   return std::make_unique<Rk4>(body);
-}
-std::unique_ptr<BodyStepper> make_midpoint(const BodyModel& body) {
-  return std::make_unique<Midpoint>(body);
 }
 std::unique_ptr<BodyStepper> make_dopri(const BodyModel& body, double tolerance) {
   return std::make_unique<Dopri>(body, tolerance);

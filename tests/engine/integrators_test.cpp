@@ -252,7 +252,7 @@ TEST(Midpoint, KeepsEnergyAndMomentumMagnitudeToRounding) {
   }
   std::printf("[ midpoint ] energy drift %.3g, |L| drift %.3g over 1e4 steps\n", energy_drift,
               momentum_drift);
-  // Rounding only: the fixed-point iteration stops at a relative change of 1e-15, so each step
+  // Rounding only: the Newton solve stops at an update of 1e-14 of the state, so each step
   // may leave a few ulps; 1e4 steps of that stay below 1e-11 (splitting's bounded energy error
   // at this step is ~1e-4, explicit Euler's growth percent-level).
   EXPECT_LT(energy_drift, 1e-11);
