@@ -93,14 +93,14 @@ struct InvariantMonitor {
   }
 };
 
-/// The geodesic angle between the body's orientation and the exact torque-free solution at
-/// the simulation's time, or nothing when the exact solution does not apply.
+/// The geodesic angle between the body's orientation and its exact solution at the
+/// simulation's time (torque-free, or a heavy symmetric top), or nothing when none applies.
 std::optional<double> exact_orientation_error(const engine::BodyModel& body,
                                               const engine::BodyState& initial,
                                               const engine::BodyState& state, double time) {
-  if (!body.torque_free()) return std::nullopt;
+  if (!body.torque_free() && !engine::is_lagrange_top(body)) return std::nullopt;
   try {
-    const engine::ReferenceMotion exact({body}, {initial});  // exact: the body is torque-free
+    const engine::ReferenceMotion exact({body}, {initial});  // exact: checked just above
     return engine::orientation_angle(exact.at(time).front().orientation, state.orientation);
   } catch (const InputError&) {  // an inertia the exact solution cannot take
     return std::nullopt;
