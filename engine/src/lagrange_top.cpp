@@ -151,7 +151,6 @@ LagrangeTop::LagrangeTop(const BodyModel& body, const BodyState& initial)
 
   const Eigen::Vector3d axis = q0 * axis_body;
   l3_ = momentum.dot(axis);
-  spin_ = l3_ / i3;
   rate_ = l3_ * (i1_ - i3) / (i1_ * i3);
   Eigen::Vector3d w_perp = (momentum - l3_ * axis) / i1_;
   w_perp -= w_perp.dot(axis) * axis;

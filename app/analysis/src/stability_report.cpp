@@ -107,7 +107,8 @@ const char* kRules =
     "it.\n\n"
     "Cells of drifting and damped runs show the largest signed excursion over the run (+gain or "
     "-loss). Error: orientation angle (rad) and position (m) at the end against the exact "
-    "torque-free solution when every body is torque-free, else against one dopri run at "
+    "solution when every body is torque-free or a heavy symmetric top, else against one dopri run "
+    "at "
     "tolerance 1e-13 (`reference` column of the CSV; none when that run failed). "
     "`skipped` runs were not made (the reason is in the CSV's `note`).\n";
 

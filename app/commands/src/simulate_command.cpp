@@ -180,7 +180,8 @@ std::chrono::steady_clock::duration run_and_write(engine::Simulation& simulation
   return stepping;
 }
 
-/// Each body's drifts and its orientation error against the exact torque-free solution.
+/// Each body's drifts and its orientation error against its exact solution (torque-free or a
+/// heavy symmetric top).
 std::vector<BodySummary> body_summaries(const engine::Simulation& simulation,
                                         const std::vector<InvariantMonitor>& monitors) {
   const auto& bodies = simulation.bodies();
@@ -343,7 +344,8 @@ std::string format_summary(const RunSummary& summary) {
         << (body.momentum_conserved ? "" : "  (not an invariant here: torques)") << "\n";
     if (body.orientation_error) {
       out << "    orientation error " << printf_number(*body.orientation_error, "%.3e")
-          << " rad against the exact torque-free solution\n";
+          << " rad against the exact " << (body.momentum_conserved ? "torque-free" : "heavy-top")
+          << " solution\n";
     }
   }
   if (summary.csv) {

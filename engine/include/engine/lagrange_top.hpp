@@ -1,7 +1,7 @@
 #pragma once
 /// @file Exact motion of the heavy symmetric (Lagrange) top: the reference for pivoted
 /// symmetric bodies under gravity, and the `exact` integrator's solution for them
-/// (engine/PHYSICS.md §5).
+/// (engine/PHYSICS.md §4b).
 
 #include <optional>
 #include <string>
@@ -81,7 +81,6 @@ class LagrangeTop {
   std::optional<TorqueFreeMotion> free_;  // kTorqueFree only
 
   double i1_ = 1.0;    // transverse moment (mean of the equal pair)
-  double spin_ = 0.0;  // L3 / I3, the constant spin about the axis
   double l3_ = 0.0;    // L . axis
   double beta_ = 0.0;  // 2 m g l / I1
   // Roots as offsets from u0 (x = u - u0) and the distances the solution needs.
@@ -96,9 +95,9 @@ class LagrangeTop {
   double lambda_ = 0.0;
   double tau0_ = 0.0;
   EllipticParameter parameter_;
-  // Sigma = phi + psi and Delta = phi - psi: d/dt = +-rate_ + c (1 + -u)^-1, the pole terms
-  // written as c_ / (1 - n_ sn^2) in tau.
-  double rate_ = 0.0;                                 // spin - L3 / I1
+  // Sigma = phi + psi and Delta = phi - psi: d/dt = +-rate_ + (b +- a) / (1 +- u), the pole
+  // terms written as lambda c_ / (1 - n_ sn^2) in tau; bpa_, bma_ = b +- a = L . (up +- axis) / I1.
+  double rate_ = 0.0;                                 // L3 / I3 - L3 / I1
   double n_minus_ = 0.0, c_minus_ = 0.0, bpa_ = 0.0;  // Sigma: 1 + u
   double n_plus_ = 0.0, c_plus_ = 0.0, bma_ = 0.0;    // Delta: 1 - u
   double sigma_half_ = 0.0, delta_half_ = 0.0;        // gained per half period, mod 4 pi

@@ -95,12 +95,13 @@ TEST_F(QuickSuite, ImplicitEulerDampsTheFastTop) {
     const auto run = find_row(rows, "heavy-top", "implicit-euler", rate_dt);
     EXPECT_EQ(run.at("outcome"), "damped") << rate_dt;
     EXPECT_LT(std::stod(run.at("energy_change_final")), -1e-3);
-    EXPECT_EQ(run.at("reference"), "dopri 1e-13");
+    EXPECT_EQ(run.at("reference"), "exact top");
   }
-  // The exact solution refuses the gravity top: skipped, with the reason.
+  // The heavy top is a Lagrange top: the exact integrator runs it (engine/PHYSICS.md §4b),
+  // keeps its invariants and lands on the reference, which is the same solution.
   const auto exact = find_row(rows, "heavy-top", "exact", 0.2);
-  EXPECT_EQ(exact.at("outcome"), "skipped");
-  EXPECT_FALSE(exact.at("note").empty());
+  EXPECT_EQ(exact.at("outcome"), "stable");
+  EXPECT_LT(std::stod(exact.at("orientation_error")), 1e-12);
 }
 
 TEST_F(QuickSuite, SymplecticEulerFlipsAcrossWnDtOfTwoOnTheStiffSpring) {

@@ -23,9 +23,9 @@ struct StabilityReference {
   std::vector<engine::BodyState> states;
 };
 
-/// The case's engine::ReferenceMotion at its end (the exact torque-free solution when every
-/// body is torque-free, else dopri at engine::kReferenceTolerance, with a hundred output
-/// steps); "none" when that run fails.
+/// The case's engine::ReferenceMotion at its end (the exact solution when every body is
+/// torque-free or a heavy symmetric top, else dopri at engine::kReferenceTolerance, with a hundred
+/// output steps); "none" when that run fails.
 StabilityReference stability_reference(const StabilityCase& c);
 
 /// What one run of the sweep found.
