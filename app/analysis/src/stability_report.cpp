@@ -107,9 +107,8 @@ const char* kRules =
     "it.\n\n"
     "Cells of drifting and damped runs show the largest signed excursion over the run (+gain or "
     "-loss). Error: orientation angle (rad) and position (m) at the end against the exact "
-    "solution when every body is torque-free or a heavy symmetric top, else against one dopri run "
-    "at "
-    "tolerance 1e-13 (`reference` column of the CSV; none when that run failed). "
+    "solution when every body is torque-free or a heavy symmetric top, else against one dopri "
+    "run at tolerance 1e-13 (`reference` column of the CSV; none when that run failed). "
     "`skipped` runs were not made (the reason is in the CSV's `note`).\n";
 
 /// Case `c`'s section of the report: its description, its matrix (from `runs[index]` on,
