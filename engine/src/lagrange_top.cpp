@@ -55,6 +55,38 @@ constexpr double kPi = std::numbers::pi;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+/// Pi(n; am tau | m) for |tau| <= K, with p = 1 - n sn^2 given by the caller: near n = 1 (a pass
+/// close to the vertical) it is computed as (1 - u) / (1 - u1), since 1 - n itself has lost its
+/// digits there. For n >= -1, tau + (n/3) sn^3 R_J(cn^2, dn^2, 1, p) (DLMF 19.25.14). For
+/// n < -1 (a pass close to straight down: n -> -inf) the two terms of that form cancel to
+/// Pi ~ 1/sqrt(-n), so the transformation n -> n' = m/n (DLMF 19.7.9) is used instead:
+///   Pi(n) = tau - Pi(n') + sn R_C(cn^2 dn^2, p (1 - n' sn^2))
+///         = -(n'/3) sn^3 R_J(cn^2, dn^2, 1, 1 - n' sn^2) + sn R_C(cn^2 dn^2, p (1 - n' sn^2)),
+/// every term of one sign.
+double third_kind(double n, double p, double tau_reduced, const JacobiElliptic& e, double m) {
+  if (n == 0.0) return tau_reduced;
+  const double sn = e.sn, cn = e.cn, dn = e.dn;
+  const double sn3 = sn * sn * sn;
+  if (n >= -1.0) return tau_reduced + n / 3.0 * sn3 * carlson_rj(cn * cn, dn * dn, 1.0, p);
+  const double n_dual = m / n;
+  const double p_dual = 1.0 - n_dual * sn * sn;
+  const double dual =
+      n_dual == 0.0 ? 0.0 : -n_dual / 3.0 * sn3 * carlson_rj(cn * cn, dn * dn, 1.0, p_dual);
+  return dual + sn * carlson_rc(cn * cn * dn * dn, p * p_dual);
+}
+
+/// Pi(n|m), the same two ways: K + (n/3) R_J(0, 1 - m, 1, 1 - n), or for n < -1
+/// -(n'/3) R_J(0, 1 - m, 1, 1 - n') + (pi/2) / sqrt((1 - n)(1 - n')), n' = m/n.
+double third_kind_complete(double n, double one_minus_n, const EllipticParameter& parameter) {
+  const double k = parameter.quarter;
+  if (n == 0.0) return k;
+  if (n >= -1.0) return k + n / 3.0 * carlson_rj(0.0, parameter.m1, 1.0, one_minus_n);
+  const double n_dual = parameter.m / n;
+  const double dual =
+      n_dual == 0.0 ? 0.0 : -n_dual / 3.0 * carlson_rj(0.0, parameter.m1, 1.0, 1.0 - n_dual);
+  return dual + 0.5 * kPi / std::sqrt(one_minus_n * (1.0 - n_dual));
+}
+
 Eigen::Vector3d total_gravity(const BodyModel& body) {
   Eigen::Vector3d g = Eigen::Vector3d::Zero();
   for (const ForceTerm& term : body.forces) {
@@ -176,8 +208,18 @@ void LagrangeTop::solve_roots(double one_minus_u0, double one_plus_u0, double ud
   // f >= 0 at x = 0, f <= 0 at u = -1 and u = 1: x1 in [-(1 + u0), 0], x2 in [0, 1 - u0].
   x1_ = bracketed_root(c0, c1, c2, -one_plus_u0, 0.0, false);
   x2_ = bracketed_root(c0, c1, c2, 0.0, one_minus_u0, true);
-  // The third root from the sum of the roots, polished by Newton (a simple root, u3 >= 1).
-  double x3 = std::max(-c2 - x1_ - x2_, one_minus_u0);
+  // The third root (u3 >= 1) from a product of the roots, which keeps its relative accuracy
+  // when all three lie close to u0 (a slow top just off the upright: u2, u3 -> 1), or from
+  // their sum when both others are zero; then polished by Newton.
+  double x3 = -c2 - x1_ - x2_;
+  if (c0 > 0.0 && x1_ < 0.0 && x2_ > 0.0) {
+    x3 = -c0 / (x1_ * x2_);
+  } else if (x1_ < 0.0 && x2_ == 0.0) {
+    x3 = c1 / x1_;
+  } else if (x1_ == 0.0 && x2_ > 0.0) {
+    x3 = c1 / x2_;
+  }
+  x3 = std::max(x3, one_minus_u0);
   for (int k = 0; k < 3; ++k) {
     const double value = c0 + x3 * (c1 + x3 * (c2 + x3));
     const double slope = c1 + x3 * (2.0 * c2 + 3.0 * x3);
@@ -201,7 +243,7 @@ void LagrangeTop::solve_roots(double one_minus_u0, double one_plus_u0, double ud
     one_minus_u2_ = bma_ * bma_ / (beta_ * one_minus_u1 * u3_minus_1);
   }
   u1_ = one_plus_u1_ - 1.0;
-  u2_ = 1.0 - one_minus_u2_;
+  u2_ = std::max(1.0 - one_minus_u2_, u1_);
   through_bottom_ = !(one_plus_u1_ > 0.0);
   through_top_ = !(one_minus_u2_ > 0.0);
 }
@@ -240,19 +282,20 @@ void LagrangeTop::set_precession() {
   }
   const double k = parameter_.quarter;
   if (!std::isfinite(k)) return;  // u2 = u3: one asymptotic approach, no period
-  const auto complete = [&](double n) {
-    return n == 0.0 ? k : k + n / 3.0 * carlson_rj(0.0, parameter_.m1, 1.0, 1.0 - n);
+  // Pi(n|m) with 1 - n = (1 +- u2) / (1 +- u1).
+  const auto complete = [&](double n, double one_minus_n) {
+    return third_kind_complete(n, one_minus_n, parameter_);
   };
   const double linear = 2.0 * k * rate_ / lambda_;
-  sigma_half_ = std::remainder(linear + 2.0 * c_minus_ * complete(n_minus_), 4.0 * kPi);
-  delta_half_ = std::remainder(-linear + 2.0 * c_plus_ * complete(n_plus_), 4.0 * kPi);
-}
-
-double LagrangeTop::third_kind(double n, double tau_reduced, double sn, double cn,
-                               double dn) const {
-  if (n == 0.0) return tau_reduced;
-  const double sn2 = sn * sn;
-  return tau_reduced + n / 3.0 * sn * sn2 * carlson_rj(cn * cn, dn * dn, 1.0, 1.0 - n * sn2);
+  if (!through_bottom_) {
+    const double one_plus_u2 = one_plus_u1_ + span_;
+    sigma_half_ = 2.0 * c_minus_ * complete(n_minus_, one_plus_u2 / one_plus_u1_);
+  }
+  if (!through_top_) {
+    delta_half_ = 2.0 * c_plus_ * complete(n_plus_, one_minus_u2_ / one_minus_u1);
+  }
+  sigma_half_ = std::remainder(linear + sigma_half_, 4.0 * kPi);
+  delta_half_ = std::remainder(-linear + delta_half_, 4.0 * kPi);
 }
 
 LagrangeTop::Local LagrangeTop::local(double t) const {
@@ -298,8 +341,15 @@ LagrangeTop::Local LagrangeTop::local(double t) const {
       delta_rate += bma_ / one_minus_u;
     }
     const double linear = rate_ * (tr - tau0_) / lambda_;
-    sigma = linear + c_minus_ * third_kind(n_minus_, tr, sn, cn, dn);
-    delta = -linear + c_plus_ * third_kind(n_plus_, tr, sn, cn, dn);
+    sigma = linear;
+    delta = -linear;
+    if (!through_bottom_) {
+      sigma += c_minus_ * third_kind(n_minus_, one_plus_u / one_plus_u1_, tr, e, parameter_.m);
+    }
+    if (!through_top_) {
+      const double one_minus_u1 = one_minus_u2_ + span_;
+      delta += c_plus_ * third_kind(n_plus_, one_minus_u / one_minus_u1, tr, e, parameter_.m);
+    }
     if (j != 0.0) {
       sigma += std::remainder(j * sigma_half_, 4.0 * kPi);
       delta += std::remainder(j * delta_half_, 4.0 * kPi);

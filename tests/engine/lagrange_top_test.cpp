@@ -128,15 +128,27 @@ TEST(LagrangeTop, AgreesWithDopriThroughTheVertical) {
 }
 
 TEST(LagrangeTop, AgreesWithDopriNearTheVerticalAndThroughTheBottom) {
-  // Tilted 1e-6 rad with a sideways swing: the axis passes within about that of the vertical,
+  // Tilted 1e-3 rad with a sideways swing: the axis passes within 1e-6 rad of the vertical,
   // where Delta turns by nearly 2 pi in a moment (the pole of the third-kind integral at
-  // n+ -> 1). And a pendulum released level at rest: u swings through -1 (hanging straight
-  // down) and back up to 0.
+  // n+ -> 1, where 1 - n+ must come from 1 - u2, not from n+). And a pendulum released level at
+  // rest: u swings through -1 (hanging straight down) and back up to 0.
   const BodyModel body = heavy_top();
   const Agreement near =
       agreement(body, tilted(body, 1e-6, Eigen::Vector3d(1.5, 0.0, 8.0)), 0.1, 5.0);
   EXPECT_LT(near.orientation, 1e-10);
   EXPECT_LT(near.momentum, 1e-10);
+  // Released 1e-9 rad from hanging, spinning and swung sideways: it passes within about that of
+  // straight down, where n- -> -inf and Pi(n-) ~ 1/sqrt(-n-) needs the dual form n' = m / n.
+  const Agreement low = agreement(
+      body, tilted(body, std::numbers::pi - 1e-9, Eigen::Vector3d(1.5, 0.0, 8.0)), 0.1, 3.0);
+  EXPECT_LT(low.orientation, 1e-10);
+  EXPECT_LT(low.momentum, 1e-10);
+  // A slow top swung from 1e-9 rad off the upright: it falls through (almost) straight down and
+  // comes back to (almost) the vertical, near both poles in each nutation.
+  const Agreement over =
+      agreement(body, tilted(body, 1e-9, Eigen::Vector3d(0.3, 0.2, 0.0)), 0.1, 3.0);
+  EXPECT_LT(over.orientation, 1e-10);
+  EXPECT_LT(over.momentum, 1e-10);
   const BodyState level = tilted(body, 0.5 * std::numbers::pi, Eigen::Vector3d::Zero());
   const LagrangeTop pendulum(body, level);
   EXPECT_NEAR(pendulum.u_min(), -1.0, 1e-15);

@@ -73,7 +73,6 @@ class LagrangeTop {
   void set_precession();
   void anchor(const Eigen::Quaterniond& orientation0, const Eigen::Vector3d& axis0,
               const Eigen::Vector3d& momentum0);
-  double third_kind(double n, double tau_reduced, double sn, double cn, double dn) const;
 
   BodyModel body_;
   BodyState initial_;
