@@ -13,7 +13,9 @@
 //   f = f0 + f1 x + f2 x^2 + beta x^3,  f0 = (du/dt)^2, f1 = -beta (1 - u0^2) - 2 u0 K0 + 2 a P0,
 //   f2 = 2 beta u0 - K0 - a^2,  K0 = |w_perp|^2 = alpha - beta u0,  P0 = up . w_perp = b - a u0,
 // each from the state directly (no energy subtraction), and 1 -+ u0 come from |a -+ up|^2 / 2,
-// so the roots near u0 and the distances to the poles keep their relative accuracy.
+// so the roots near u0 keep their relative accuracy; the third root comes from a product of
+// the roots, and the distances to the poles 1 + u1, 1 - u2 from f(-1) = -(b + a)^2 and
+// f(1) = -(b - a)^2 (b +- a = L . (up +- a) / I1), which keep theirs near a pole.
 //
 // Angles. z-x-z Euler angles phi (precession), theta, psi (spin) about the vertical:
 // dphi/dt = (b - a u) / (1 - u^2), dpsi/dt = L3 / I3 - u dphi/dt. Rather than phi and psi, which
@@ -26,7 +28,9 @@
 // With 1 + u = (1 + u1)(1 - n- sn^2), n- = -(u2 - u1) / (1 + u1) <= 0, and
 // 1 - u = (1 - u1)(1 - n+ sn^2), n+ = (u2 - u1) / (1 - u1) in [0, 1), each integral is
 // rate t + c Pi(n; am tau | m) with Pi evaluated, for |tau| <= K, as
-// tau + (n/3) sn^3 R_J(cn^2, dn^2, 1, 1 - n sn^2) (DLMF 19.25.14; as in §4). A top whose axis
+// tau + (n/3) sn^3 R_J(cn^2, dn^2, 1, 1 - n sn^2) (DLMF 19.25.14; as in §4), 1 - n sn^2 taken
+// as (1 -+ u) / (1 -+ u1), and through the dual characteristic m / n when n < -1 (near straight
+// down, where that form cancels: see third_kind). A top whose axis
 // passes through the vertical (u2 = 1, so b = a) has no pole in Delta: the term is dropped and
 // sin(theta/2) = sqrt((u2 - u1)/2) cn, signed, keeps the quaternion smooth through it (the
 // limit of the 2 pi turn of Delta of a near pass); likewise through straight down (u1 = -1).
