@@ -19,7 +19,6 @@
 
 #include <Eigen/LU>
 
-#include "engine/input_error.hpp"
 #include "steppers.hpp"
 
 namespace tumble::engine {
