@@ -221,7 +221,8 @@ const std::vector<IntegratorInfo>& integrator_catalog() {
       {K::kDopri, "dopri", 5, true, false,
        "adaptive Dormand-Prince 5(4) with --tolerance; the reference for forced problems", 0},
       {K::kExact, "exact", -1, false, true,
-       "the torque-free solution (Jacobi elliptic functions); refuses scenes with torques", 0},
+       "closed form: torque-free bodies and heavy symmetric tops; refuses other forced bodies",
+       0},
   };
   return catalog;
 }
@@ -268,13 +269,7 @@ std::unique_ptr<BodyStepper> make_stepper(IntegratorKind kind, const BodyModel& 
       return steppers::make_moser_veselov(body);
     case K::kDopri:
       return steppers::make_dopri(body, settings.tolerance);
-    case K::kExact:
-      if (!body.torque_free()) {
-        throw InputError(
-            "body '" + body.name +
-            "': the exact integrator needs a torque-free body (no pivot under gravity, "
-            "no torque, no spring); choose another integrator");
-      }
+    case K::kExact:  // refuses bodies without a closed form (exact_stepper.cpp)
       return steppers::make_exact(body, initial);
   }
   throw std::logic_error("make_stepper: unknown kind");

@@ -1,4 +1,5 @@
-// The one reference motion: exact when torque-free, otherwise dopri at kReferenceTolerance.
+// The one reference motion: exact when every body is torque-free or a Lagrange top, otherwise
+// dopri at kReferenceTolerance.
 #include "engine/reference_motion.hpp"
 
 #include <algorithm>
@@ -34,40 +35,72 @@ Eigen::Vector3d gravity_of(const BodyModel& body) {
 ReferenceMotion::ReferenceMotion(std::vector<BodyModel> bodies, std::vector<BodyState> initial,
                                  double tolerance)
     : bodies_(std::move(bodies)), initial_(std::move(initial)), tolerance_(tolerance) {
-  const bool torque_free = std::all_of(bodies_.begin(), bodies_.end(),
-                                       [](const BodyModel& body) { return body.torque_free(); });
-  kind_ = torque_free ? Kind::kExact : Kind::kDopri;
+  const auto has = [&](auto predicate) {
+    return std::all_of(bodies_.begin(), bodies_.end(), predicate);
+  };
+  if (has([](const BodyModel& body) { return body.torque_free(); })) {
+    kind_ = Kind::kExact;
+  } else if (has([](const BodyModel& body) {
+               return body.torque_free() || is_lagrange_top(body);
+             })) {
+    kind_ = Kind::kExactWithTops;
+  } else {
+    kind_ = Kind::kDopri;
+  }
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     update_pivot_kinematics(bodies_[i], initial_[i]);
-    if (kind_ != Kind::kExact) continue;
-    // Initial angular velocity in principal axes: J^-1 R^T L.
+    if (kind_ == Kind::kDopri) continue;
     const BodyState& start = initial_[i];
+    if (!bodies_[i].torque_free()) {
+      slot_.push_back(tops_.size());
+      tops_.emplace_back(bodies_[i], start);
+      continue;
+    }
+    // Initial angular velocity in principal axes: J^-1 R^T L.
     const Eigen::Vector3d omega_body =
         (start.orientation.conjugate() * start.angular_momentum).cwiseQuotient(bodies_[i].moments);
-    exact_.emplace_back(bodies_[i].moments, start.orientation, omega_body);
+    slot_.push_back(free_.size());
+    free_.emplace_back(bodies_[i].moments, start.orientation, omega_body);
   }
 }
 
 IntegratorKind ReferenceMotion::integrator() const {
-  return kind_ == Kind::kExact ? IntegratorKind::kExact : IntegratorKind::kDopri;
+  return kind_ == Kind::kDopri ? IntegratorKind::kDopri : IntegratorKind::kExact;
 }
 
 std::string ReferenceMotion::description() const {
-  return kind_ == Kind::kExact ? "exact torque-free solution (Jacobi elliptic functions)"
-                               : "dopri at tolerance " + short_number(tolerance_);
+  switch (kind_) {
+    case Kind::kExact:
+      return "exact torque-free solution (Jacobi elliptic functions)";
+    case Kind::kExactWithTops:
+      return "exact solution: torque-free bodies and heavy symmetric tops (elliptic functions "
+             "and integrals)";
+    case Kind::kDopri:
+      break;
+  }
+  return "dopri at tolerance " + short_number(tolerance_);
 }
 
 std::string ReferenceMotion::label() const {
-  return kind_ == Kind::kExact ? "exact" : "dopri " + short_number(tolerance_);
+  switch (kind_) {
+    case Kind::kExact:
+      return "exact";
+    case Kind::kExactWithTops:
+      return "exact top";
+    case Kind::kDopri:
+      break;
+  }
+  return "dopri " + short_number(tolerance_);
 }
 
 BodyState ReferenceMotion::exact_state(std::size_t body, double t) const {
   // Orientation in closed form, L constant, the centre of mass on its parabola (gravity acts
   // at the centre of mass, so it leaves the rotation free) or carried by the pivot.
+  if (!bodies_[body].torque_free()) return tops_[slot_[body]].at(t);  // a Lagrange top
   const BodyState& start = initial_[body];
   const Eigen::Vector3d g = gravity_of(bodies_[body]);
   BodyState state = start;
-  state.orientation = exact_[body].at(t).orientation;
+  state.orientation = free_[slot_[body]].at(t).orientation;
   state.position = start.position + start.velocity * t + 0.5 * t * t * g;
   state.velocity = start.velocity + t * g;
   update_pivot_kinematics(bodies_[body], state);
@@ -114,7 +147,7 @@ std::vector<std::vector<BodyState>> ReferenceMotion::sample(double interval,
 }
 
 std::optional<ReferenceMotion> ReferenceMotion::check_run() const {
-  if (kind_ == Kind::kExact) return std::nullopt;
+  if (kind_ != Kind::kDopri) return std::nullopt;
   return ReferenceMotion(bodies_, initial_, kReferenceCheckTolerance);
 }
 

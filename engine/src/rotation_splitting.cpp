@@ -1,5 +1,6 @@
-// Splitting integrators: rotation splitting, its 4th-order composition, free-rotor, exact.
+// Splitting integrators: rotation splitting, its 4th-order composition, free-rotor.
 //
+// (The exact integrator, a closed form rather than a step, is in exact_stepper.cpp.)
 // All are "kick, drift, kick": a half kick of forces and torques (v += a h/2, L += tau h/2),
 // a drift of the free motion, a half kick. They differ in the free rotation:
 // - splitting: Dullweber, Leimkuhler and McLachlan, "Symplectic splitting methods for rigid
@@ -13,7 +14,6 @@
 //   g2 = -2^(1/3) g1 (Yoshida, Phys. Lett. A 150 (1990)): 4th order.
 // - free-rotor: the exact torque-free flow in the middle (Celledoni, Fasso, Safstrom, Zanna,
 //   SIAM J. Sci. Comput. 30 (2008)): exact for free bodies, 2nd order with torques.
-// - exact: the torque-free solution from the initial state, evaluated at each time.
 // The kick is exact: with x and q frozen, forces that depend on x and q only (gravity,
 // constant torques, undamped springs) are constant, so v += a h/2, L += tau h/2 is their flow;
 // with spring damping the kick is a linear ODE in (v, L), whose exact flow damped_kick()
@@ -130,35 +130,6 @@ class FreeRotor final : public BodyStepper {
   KickFlowCache kick_flow_;
 };
 
-class Exact final : public BodyStepper {
- public:
-  Exact(const BodyModel& body, const BodyState& initial)
-      : body_(body),
-        initial_(initial),
-        motion_(body.moments, initial.orientation,
-                (initial.orientation.conjugate() * initial.angular_momentum)
-                    .cwiseQuotient(body.moments)) {
-    for (const ForceTerm& term : body.forces) {
-      if (const auto* g = std::get_if<Gravity>(&term)) gravity_ += g->acceleration;
-    }
-  }
-  void step(BodyState& s, double t, double h) override {
-    const double time = t + h;
-    s.orientation = motion_.at(time).orientation;
-    s.angular_momentum = initial_.angular_momentum;
-    if (!body_.pivoted) {
-      s.position = initial_.position + time * initial_.velocity + 0.5 * time * time * gravity_;
-      s.velocity = initial_.velocity + time * gravity_;
-    }
-  }
-
- private:
-  const BodyModel& body_;
-  BodyState initial_;
-  TorqueFreeMotion motion_;
-  Eigen::Vector3d gravity_ = Eigen::Vector3d::Zero();
-};
-
 }  // namespace
 
 std::unique_ptr<BodyStepper> make_splitting(const BodyModel& body, int order) {
@@ -166,9 +137,6 @@ std::unique_ptr<BodyStepper> make_splitting(const BodyModel& body, int order) {
 }
 std::unique_ptr<BodyStepper> make_free_rotor(const BodyModel& body) {
   return std::make_unique<FreeRotor>(body);
-}
-std::unique_ptr<BodyStepper> make_exact(const BodyModel& body, const BodyState& initial) {
-  return std::make_unique<Exact>(body, initial);
 }
 
 }  // namespace tumble::engine::steppers

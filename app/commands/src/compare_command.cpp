@@ -337,7 +337,7 @@ CLI::App& add_compare_command(CLI::App& cli, CompareOptions& options) {
       "Every run uses the same dt and the same frame times as tumble render. grid: one panel "
       "per integrator, same camera, each with its energy and |L| drift plots. overlay: every "
       "run in its own translucent colour over a grey ghost of the reference (exact for "
-      "torque-free scenes, otherwise dopri at tolerance " +
+      "torque-free scenes and heavy symmetric tops, otherwise dopri at tolerance " +
       printf_number(engine::kReferenceTolerance, "%g") +
       "). A run that blows up holds its "
       "last good state and says when. Exit status: 0 done, 1 bad scene/option/output or ffmpeg "

@@ -93,14 +93,14 @@ struct InvariantMonitor {
   }
 };
 
-/// The geodesic angle between the body's orientation and the exact torque-free solution at
-/// the simulation's time, or nothing when the exact solution does not apply.
+/// The geodesic angle between the body's orientation and its exact solution at the
+/// simulation's time (torque-free, or a heavy symmetric top), or nothing when none applies.
 std::optional<double> exact_orientation_error(const engine::BodyModel& body,
                                               const engine::BodyState& initial,
                                               const engine::BodyState& state, double time) {
-  if (!body.torque_free()) return std::nullopt;
+  if (!body.torque_free() && !engine::is_lagrange_top(body)) return std::nullopt;
   try {
-    const engine::ReferenceMotion exact({body}, {initial});  // exact: the body is torque-free
+    const engine::ReferenceMotion exact({body}, {initial});  // exact: checked just above
     return engine::orientation_angle(exact.at(time).front().orientation, state.orientation);
   } catch (const InputError&) {  // an inertia the exact solution cannot take
     return std::nullopt;
@@ -180,7 +180,8 @@ std::chrono::steady_clock::duration run_and_write(engine::Simulation& simulation
   return stepping;
 }
 
-/// Each body's drifts and its orientation error against the exact torque-free solution.
+/// Each body's drifts and its orientation error against its exact solution (torque-free or a
+/// heavy symmetric top).
 std::vector<BodySummary> body_summaries(const engine::Simulation& simulation,
                                         const std::vector<InvariantMonitor>& monitors) {
   const auto& bodies = simulation.bodies();
@@ -343,7 +344,8 @@ std::string format_summary(const RunSummary& summary) {
         << (body.momentum_conserved ? "" : "  (not an invariant here: torques)") << "\n";
     if (body.orientation_error) {
       out << "    orientation error " << printf_number(*body.orientation_error, "%.3e")
-          << " rad against the exact torque-free solution\n";
+          << " rad against the exact " << (body.momentum_conserved ? "torque-free" : "heavy-top")
+          << " solution\n";
     }
   }
   if (summary.csv) {

@@ -1,6 +1,7 @@
 #pragma once
 /// @file The reference every integrator is measured against, chosen one way everywhere: the
-/// exact solution when every body is torque-free, otherwise dopri at kReferenceTolerance.
+/// exact solution when every body has one (torque-free bodies, engine/PHYSICS.md §4, and heavy
+/// symmetric tops, §4b), otherwise dopri at kReferenceTolerance.
 ///
 /// `tumble bench`, `compare` (the grey ghost of the overlay), `stability` and `simulate` all
 /// take their reference from here, so they agree on what "the reference" is and say so with
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "engine/integrators.hpp"
+#include "engine/lagrange_top.hpp"
 #include "engine/rigid_body.hpp"
 #include "engine/torque_free_exact.hpp"
 
@@ -29,8 +31,9 @@ inline constexpr double kReferenceCheckTolerance = 1e-12;
 class ReferenceMotion {
  public:
   enum class Kind {
-    kExact,  ///< every body is torque-free: TorqueFreeMotion, position in closed form
-    kDopri,  ///< some body has torques: adaptive Dormand-Prince at tolerance()
+    kExact,          ///< every body is torque-free: TorqueFreeMotion, position in closed form
+    kExactWithTops,  ///< every body torque-free or a Lagrange top (some one): LagrangeTop too
+    kDopri,          ///< some other body has torques: adaptive Dormand-Prince at tolerance()
   };
 
   /// `tolerance` is dopri's (unused when the exact solution applies). Throws
@@ -39,13 +42,16 @@ class ReferenceMotion {
                   double tolerance = kReferenceTolerance);
 
   Kind kind() const { return kind_; }
-  /// The integrator that reproduces the reference in a Simulation: kExact or kDopri.
+  /// The integrator that reproduces the reference in a Simulation: kExact (for both exact
+  /// kinds) or kDopri.
   IntegratorKind integrator() const;
   /// dopri's local error tolerance (meaningful for kDopri only).
   double tolerance() const { return tolerance_; }
-  /// "exact torque-free solution (Jacobi elliptic functions)" or "dopri at tolerance 1e-13".
+  /// "exact torque-free solution (Jacobi elliptic functions)", "exact solution: torque-free
+  /// bodies and heavy symmetric tops (elliptic functions and integrals)" or "dopri at
+  /// tolerance 1e-13".
   std::string description() const;
-  /// Short form for tables: "exact" or "dopri 1e-13".
+  /// Short form for tables: "exact", "exact top" or "dopri 1e-13".
   std::string label() const;
 
   /// Every body's state at time t >= 0 (dopri: one run with a single output step to t).
@@ -57,7 +63,7 @@ class ReferenceMotion {
   std::vector<std::vector<BodyState>> sample(double interval, double duration) const;
 
   /// For a dopri reference, the same reference at kReferenceCheckTolerance (how far to trust
-  /// it); nothing for the exact solution.
+  /// it); nothing for the exact solutions.
   std::optional<ReferenceMotion> check_run() const;
 
  private:
@@ -68,7 +74,9 @@ class ReferenceMotion {
   std::vector<BodyState> initial_;  ///< pivot kinematics applied
   double tolerance_;
   Kind kind_;
-  std::vector<TorqueFreeMotion> exact_;  ///< per body, kExact only
+  std::vector<TorqueFreeMotion> free_;  ///< per torque-free body, exact kinds only
+  std::vector<LagrangeTop> tops_;       ///< per Lagrange top, kExactWithTops only
+  std::vector<std::size_t> slot_;       ///< body -> index in free_ or tops_
 };
 
 }  // namespace tumble::engine

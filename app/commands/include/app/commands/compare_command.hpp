@@ -7,8 +7,9 @@
 ///    first run's), each labelled with its integrator, dt and time and carrying its energy and
 ///    |L| drift plots;
 ///  - overlay: every run in one view, each in its own translucent colour, over a grey ghost of
-///    a reference run (`exact` when every body is torque-free, otherwise `dopri` at tolerance
-///    1e-12) whose camera it uses, with a legend mapping colours to integrators.
+///    a reference run (`exact` when every body is torque-free or a heavy symmetric top,
+///    otherwise `dopri` at tolerance 1e-12) whose camera it uses, with a legend mapping colours to
+///    integrators.
 /// A run that blows up holds its last good state and says when it blew up; the others go on.
 
 #include <cstddef>

@@ -53,7 +53,7 @@ struct BodySummary {
   double energy_drift_final = 0.0;
   double momentum_drift_max = 0.0;  ///< max | |L| - |L0| | / |L0| (absolute when L0 = 0)
   double momentum_drift_final = 0.0;
-  std::optional<double> orientation_error;  ///< rad, against the exact torque-free solution
+  std::optional<double> orientation_error;  ///< rad, against the exact solution (§4, §4b)
 };
 
 /// What a run did.
