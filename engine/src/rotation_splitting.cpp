@@ -17,7 +17,9 @@
 // Velocity-dependent forces (spring damping) are kicked explicitly, which makes those terms
 // first order; everything conservative keeps the stated order.
 #include <cmath>
+#include <optional>
 
+#include "compensated_orientation.hpp"
 #include "engine/torque_free_exact.hpp"
 #include "steppers.hpp"
 
@@ -32,23 +34,23 @@ void kick(const BodyModel& body, BodyState& s, double half_step) {
   s.angular_momentum += half_step * r.torque;
 }
 
-/// Free rotation by the symmetric splitting R1(h/2) R2(h/2) R3(h) R2(h/2) R1(h/2).
-void split_rotation(const Eigen::Vector3d& inverse_moments, BodyState& s, double h) {
+/// Free rotation by the symmetric splitting R1(h/2) R2(h/2) R3(h) R2(h/2) R1(h/2). Each
+/// sub-rotation adds q (cos - 1, sin e_axis) to the compensated `orientation`, so its rounding
+/// is relative to the turn (compensated_orientation.hpp).
+void split_rotation(const Eigen::Vector3d& inverse_moments, CompensatedOrientation& orientation,
+                    BodyState& s, double h) {
+  orientation.resume(s.orientation);
   Eigen::Vector3d momentum = s.orientation.conjugate() * s.angular_momentum;  // body frame
-  Eigen::Vector4d q(s.orientation.w(), s.orientation.x(), s.orientation.y(), s.orientation.z());
   const auto rotate_about = [&](int axis, double t) {
     // Body turns by +angle about the axis; its body-frame momentum by -angle.
     const double half = 0.5 * t * momentum[axis] * inverse_moments[axis];
     const HalfAngle f = half_angle(half * half);
     const double c = f.cos, sn = half * f.sinc;
-    // q <- q (c, sn e_axis): with a, b the next axes, w' = c w - sn q_axis,
-    // q_axis' = c q_axis + sn w, q_a' = c q_a + sn q_b, q_b' = c q_b - sn q_a (8 products).
-    const int i = axis + 1, a = (axis + 1) % 3, b = (axis + 2) % 3;
-    const double w = q[0], qi = q[i], qa = q[a + 1], qb = q[b + 1];
-    q[0] = c * w - sn * qi;
-    q[i] = c * qi + sn * w;
-    q[a + 1] = c * qa + sn * qb;
-    q[b + 1] = c * qb - sn * qa;
+    Eigen::Quaterniond delta(f.cos_minus_one, 0.0, 0.0, 0.0);
+    delta.vec()[axis] = sn;
+    orientation.turn_body(delta);
+    // With a, b the next axes, the momentum turns by the full angle in the (a, b) plane.
+    const int a = (axis + 1) % 3, b = (axis + 2) % 3;
     const double cos_full = c * c - sn * sn, sin_full = 2.0 * sn * c;
     const double ma = momentum[a], mb = momentum[b];
     momentum[a] = cos_full * ma + sin_full * mb;
@@ -59,7 +61,8 @@ void split_rotation(const Eigen::Vector3d& inverse_moments, BodyState& s, double
   rotate_about(2, h);
   rotate_about(1, 0.5 * h);
   rotate_about(0, 0.5 * h);
-  s.orientation = renormalized(Eigen::Quaterniond(q[0], q[1], q[2], q[3]));
+  orientation.normalize();
+  s.orientation = orientation.value();
 }
 
 class Splitting final : public BodyStepper {
@@ -81,16 +84,17 @@ class Splitting final : public BodyStepper {
   }
 
  private:
-  void second_order(BodyState& s, double h) const {
+  void second_order(BodyState& s, double h) {
     kick(body_, s, 0.5 * h);
     if (!body_.pivoted) s.position += h * s.velocity;
-    split_rotation(inverse_moments_, s, h);
+    split_rotation(inverse_moments_, orientation_, s, h);
     kick(body_, s, 0.5 * h);
   }
 
   const BodyModel& body_;
   Eigen::Vector3d inverse_moments_;
   int order_;
+  CompensatedOrientation orientation_;
 };
 
 class FreeRotor final : public BodyStepper {
@@ -99,15 +103,41 @@ class FreeRotor final : public BodyStepper {
   void step(BodyState& s, double, double h) override {
     kick(body_, s, 0.5 * h);
     if (!body_.pivoted) s.position += h * s.velocity;
-    const Eigen::Vector3d omega_body =
-        (s.orientation.conjugate() * s.angular_momentum).cwiseQuotient(body_.moments);
-    const TorqueFreeMotion flow(body_.moments, s.orientation, omega_body);
-    s.orientation = flow.at(h).orientation;  // world L is constant along the flow
+    free_flow(s, h);
     kick(body_, s, 0.5 * h);
   }
 
  private:
+  /// The exact torque-free flow from `s` over h; world L is constant along it. Built afresh
+  /// from `s` when the kick changed L or the state is not the one the last step returned.
+  /// Otherwise `s` is still on the motion the last step followed, and that motion is
+  /// continued at the time elapsed since it was built (summed with compensation, so to
+  /// rounding of the total): re-deriving it from the rounded state instead fed an error of
+  /// ~1e-16 into its energy every step, a random walk that near the separatrix moves the
+  /// flips (engine/PHYSICS.md §3).
+  void free_flow(BodyState& s, double h) {
+    if (!motion_ || s.orientation.coeffs() != end_orientation_.coeffs() ||
+        s.angular_momentum != motion_->angular_momentum_world()) {
+      const Eigen::Vector3d omega_body =
+          (s.orientation.conjugate() * s.angular_momentum).cwiseQuotient(body_.moments);
+      motion_.emplace(body_.moments, s.orientation, omega_body);
+      elapsed_ = 0.0;
+      elapsed_error_ = 0.0;
+    }
+    // Kahan's compensated sum of the steps.
+    const double increment = h + elapsed_error_;
+    const double sum = elapsed_ + increment;
+    elapsed_error_ = increment - (sum - elapsed_);
+    elapsed_ = sum;
+    end_orientation_ = motion_->at(elapsed_).orientation;
+    s.orientation = end_orientation_;
+  }
+
   const BodyModel& body_;
+  std::optional<TorqueFreeMotion> motion_;
+  double elapsed_ = 0.0;        // time since motion_ was built
+  double elapsed_error_ = 0.0;  // what rounding left out of elapsed_
+  Eigen::Quaterniond end_orientation_ = Eigen::Quaterniond::Identity();
 };
 
 class Exact final : public BodyStepper {
