@@ -34,13 +34,13 @@ void kick(const BodyModel& body, BodyState& s, double half_step) {
   s.angular_momentum += half_step * r.torque;
 }
 
-/// Free rotation by the symmetric splitting R1(h/2) R2(h/2) R3(h) R2(h/2) R1(h/2). Each
-/// sub-rotation adds q (cos - 1, sin e_axis) to the compensated `orientation`, so its rounding
-/// is relative to the turn (compensated_orientation.hpp).
+/// Free rotation by the symmetric splitting R1(h/2) R2(h/2) R3(h) R2(h/2) R1(h/2). The five
+/// turns are composed as one small turn, added to the compensated `orientation`, so the
+/// rounding of a step is relative to the turn (compensated_orientation.hpp).
 void split_rotation(const Eigen::Vector3d& inverse_moments, CompensatedOrientation& orientation,
                     BodyState& s, double h) {
-  orientation.resume(s.orientation);
   Eigen::Vector3d momentum = s.orientation.conjugate() * s.angular_momentum;  // body frame
+  Eigen::Quaterniond turn(0.0, 0.0, 0.0, 0.0);  // small part of the composed turn
   const auto rotate_about = [&](int axis, double t) {
     // Body turns by +angle about the axis; its body-frame momentum by -angle.
     const double half = 0.5 * t * momentum[axis] * inverse_moments[axis];
@@ -48,7 +48,7 @@ void split_rotation(const Eigen::Vector3d& inverse_moments, CompensatedOrientati
     const double c = f.cos, sn = half * f.sinc;
     Eigen::Quaterniond delta(f.cos_minus_one, 0.0, 0.0, 0.0);
     delta.vec()[axis] = sn;
-    orientation.turn_body(delta);
+    turn = compose_small(turn, delta);
     // With a, b the next axes, the momentum turns by the full angle in the (a, b) plane.
     const int a = (axis + 1) % 3, b = (axis + 2) % 3;
     const double cos_full = c * c - sn * sn, sin_full = 2.0 * sn * c;
@@ -61,7 +61,8 @@ void split_rotation(const Eigen::Vector3d& inverse_moments, CompensatedOrientati
   rotate_about(2, h);
   rotate_about(1, 0.5 * h);
   rotate_about(0, 0.5 * h);
-  orientation.normalize();
+  orientation.resume(s.orientation);
+  orientation.turn_body(turn);
   s.orientation = orientation.value();
 }
 

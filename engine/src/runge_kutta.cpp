@@ -73,11 +73,8 @@ class Rk4 final : public BodyStepper {
   /// exp(theta / 2) q, with the rounding of each step relative to the turn, not to q
   /// (compensated_orientation.hpp).
   Eigen::Quaterniond turned(const Eigen::Quaterniond& q, const Eigen::Vector3d& theta) {
-    const HalfAngle f = half_angle(0.25 * theta.squaredNorm());
-    const Eigen::Vector3d v = (0.5 * f.sinc) * theta;
     orientation_.resume(q);
-    orientation_.turn_world(Eigen::Quaterniond(f.cos_minus_one, v.x(), v.y(), v.z()));
-    orientation_.normalize();
+    orientation_.turn_world(small_turn(theta));
     return orientation_.value();
   }
 
