@@ -118,10 +118,11 @@ class FreeRotor final : public BodyStepper {
   /// flips (engine/PHYSICS.md §3).
   void free_flow(BodyState& s, double h) {
     if (!motion_ || s.orientation.coeffs() != end_orientation_.coeffs() ||
-        s.angular_momentum != motion_->angular_momentum_world()) {
+        s.angular_momentum != flow_momentum_) {
       const Eigen::Vector3d omega_body =
           (s.orientation.conjugate() * s.angular_momentum).cwiseQuotient(body_.moments);
       motion_.emplace(body_.moments, s.orientation, omega_body);
+      flow_momentum_ = s.angular_momentum;
       elapsed_ = 0.0;
       elapsed_error_ = 0.0;
     }
@@ -136,8 +137,9 @@ class FreeRotor final : public BodyStepper {
 
   const BodyModel& body_;
   std::optional<TorqueFreeMotion> motion_;
-  double elapsed_ = 0.0;        // time since motion_ was built
-  double elapsed_error_ = 0.0;  // what rounding left out of elapsed_
+  Eigen::Vector3d flow_momentum_ = Eigen::Vector3d::Zero();  // world L motion_ was built from
+  double elapsed_ = 0.0;                                     // time since motion_ was built
+  double elapsed_error_ = 0.0;                               // what rounding left out of elapsed_
   Eigen::Quaterniond end_orientation_ = Eigen::Quaterniond::Identity();
 };
 
