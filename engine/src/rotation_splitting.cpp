@@ -46,11 +46,18 @@ void split_rotation(const Eigen::Vector3d& inverse_moments, CompensatedOrientati
     const double half = 0.5 * t * momentum[axis] * inverse_moments[axis];
     const HalfAngle f = half_angle(half * half);
     const double c = f.cos, sn = half * f.sinc;
-    Eigen::Quaterniond delta(f.cos_minus_one, 0.0, 0.0, 0.0);
-    delta.vec()[axis] = sn;
-    turn = compose_small(turn, delta);
-    // With a, b the next axes, the momentum turns by the full angle in the (a, b) plane.
+    // turn <- small part of (1 + turn)(1 + d), d = (cos - 1, sn e_axis): compose_small
+    // written out for an axis turn (8 products). With a, b the next axes (cyclic),
+    // w' = w + d_w + w d_w - sn t_axis, t_axis' = t_axis + sn + d_w t_axis + w sn,
+    // t_a' = t_a + d_w t_a + sn t_b, t_b' = t_b + d_w t_b - sn t_a.
     const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+    const double dw = f.cos_minus_one;
+    const double w = turn.w(), ti = turn.vec()[axis], ta = turn.vec()[a], tb = turn.vec()[b];
+    turn.w() = (w + dw) + (w * dw - sn * ti);
+    turn.vec()[axis] = (ti + sn) + (dw * ti + w * sn);
+    turn.vec()[a] = ta + (dw * ta + sn * tb);
+    turn.vec()[b] = tb + (dw * tb - sn * ta);
+    // The momentum turns by the full angle in the (a, b) plane.
     const double cos_full = c * c - sn * sn, sin_full = 2.0 * sn * c;
     const double ma = momentum[a], mb = momentum[b];
     momentum[a] = cos_full * ma + sin_full * mb;
