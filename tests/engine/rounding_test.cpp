@@ -67,9 +67,9 @@ double max_orientation_error(K kind, const BodyModel& body, const BodyState& sta
 // every method's truncation error is at or below rounding already at dt 1e-2: what is left is
 // rounding. Before the compensated updates the error at dt 1e-4 was 31x (free-rotor), 23x
 // (splitting4) and 7x (rk4) that at 1e-2 here (6.7e-12, 1.2e-12, 1.3e-13 rad): every step
-// added ~1e-16 absolute to q. Now 0 (free-rotor) and 1.8e-14 rad (splitting4, rk4) at dt 1e-4. Now
-// the rounding of a step is relative to the turn it makes, and free-rotor continues one exact
-// motion, so the error no longer grows with the number of steps.
+// added ~1e-16 absolute to q. Now the rounding of a step is relative to the turn it makes, and
+// free-rotor continues one exact motion: at dt 1e-4 the errors are 0 (free-rotor) and 1.8e-14
+// rad (splitting4, rk4), no larger than at 1e-2.
 TEST(Rounding, SmallerStepsDoNotAccumulateRounding) {
   BodyModel body;
   body.name = "t-handle";
