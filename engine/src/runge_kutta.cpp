@@ -18,6 +18,7 @@
 #include <array>
 #include <cmath>
 
+#include "compensated_orientation.hpp"
 #include "steppers.hpp"
 
 namespace tumble::engine::steppers {
@@ -65,13 +66,21 @@ class Rk4 final : public BodyStepper {
           sixth * (k1.acceleration + 2.0 * (k2.acceleration + k3.acceleration) + k4.acceleration);
     }
     s.angular_momentum += sixth * (k1.torque + 2.0 * (k2.torque + k3.torque) + k4.torque);
-    s.orientation =
-        renormalized(rotation_quaternion(sixth * (u1 + 2.0 * (u2 + u3) + u4)) * s.orientation);
+    s.orientation = turned(s.orientation, sixth * (u1 + 2.0 * (u2 + u3) + u4));
   }
 
  private:
+  /// exp(theta / 2) q, with the rounding of each step relative to the turn, not to q
+  /// (compensated_orientation.hpp).
+  Eigen::Quaterniond turned(const Eigen::Quaterniond& q, const Eigen::Vector3d& theta) {
+    orientation_.resume(q);
+    orientation_.turn_world(small_turn(theta));
+    return orientation_.value();
+  }
+
   const BodyModel& body_;
   Eigen::Vector3d inverse_moments_;
+  CompensatedOrientation orientation_;
 };
 
 /// (x, v, q, L) as 13 numbers, q stored w, x, y, z.

@@ -126,19 +126,24 @@ Eigen::Quaterniond body_orientation(const BodyModel& body, const BodyState& stat
 /// cos(x) and sin(x)/x of a half angle x, from x^2. Below |x| = 0.05 (every step that turns a
 /// body by less than 0.1 rad) a Taylor polynomial gives both to rounding (the first omitted
 /// terms are below 1e-20) with no square root or libm call; above it, std::cos and std::sin.
+/// `cos_minus_one` is cos(x) - 1 to relative rounding (not 1 - cos rounded near 1): what a
+/// compensated update (engine/src/compensated_orientation.hpp) adds to a quaternion.
 struct HalfAngle {
   double cos;
-  double sinc;  ///< sin(x) / x
+  double sinc;           ///< sin(x) / x
+  double cos_minus_one;  ///< cos(x) - 1, accurate to rounding relative to itself
 };
 inline HalfAngle half_angle(double x_squared) {
   if (x_squared < 0.0025) {
     const double y = x_squared;
-    return {
-        1.0 - y / 2.0 * (1.0 - y / 12.0 * (1.0 - y / 30.0 * (1.0 - y / 56.0 * (1.0 - y / 90.0)))),
-        1.0 - y / 6.0 * (1.0 - y / 20.0 * (1.0 - y / 42.0 * (1.0 - y / 72.0)))};
+    const double cos_minus_one =
+        -y / 2.0 * (1.0 - y / 12.0 * (1.0 - y / 30.0 * (1.0 - y / 56.0 * (1.0 - y / 90.0))));
+    return {1.0 + cos_minus_one,
+            1.0 - y / 6.0 * (1.0 - y / 20.0 * (1.0 - y / 42.0 * (1.0 - y / 72.0))), cos_minus_one};
   }
   const double x = std::sqrt(x_squared);
-  return {std::cos(x), std::sin(x) / x};
+  const double sin_half = std::sin(0.5 * x);
+  return {std::cos(x), std::sin(x) / x, -2.0 * sin_half * sin_half};
 }
 
 /// Unit quaternion exp(rotation_vector / 2): a turn by |v| about v.
