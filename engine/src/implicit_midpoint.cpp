@@ -9,6 +9,7 @@
 #include "implicit_midpoint.hpp"
 
 #include <cmath>
+#include <optional>
 
 #include <Eigen/LU>
 
@@ -204,6 +205,7 @@ class Midpoint final : public BodyStepper {
   explicit Midpoint(const BodyModel& body) : body_(body), newton_matrix_(body) {}
   void step(BodyState& s, double, double h) override {
     using implicit_midpoint::Vector13;
+    ++steps_;
     const Vector13 y0 = implicit_midpoint::pack(s);
     // Newton on g(y) = y - y0 - h f((y0 + y) / 2), dg/dy = I - h/2 df/dy, from y = y0. The
     // factorised dg/dy is kept while the updates shrink at least tenfold an iteration (a
@@ -254,6 +256,11 @@ class Midpoint final : public BodyStepper {
   /// so far.
   long long newton_iterations() const { return newton_iterations_; }
   long long jacobian_evaluations() const { return jacobian_evaluations_; }
+  /// One right-hand-side evaluation per Newton iteration (the residual at the midpoint);
+  /// the Jacobian's evaluations are not counted (engine/PHYSICS.md §5).
+  std::optional<StepCounts> counts() const override {
+    return StepCounts{steps_, 0, static_cast<std::size_t>(newton_iterations_)};
+  }
 
  private:
   static constexpr int kMaxIterations = 50;
@@ -262,6 +269,7 @@ class Midpoint final : public BodyStepper {
   NewtonMatrix newton_matrix_;
   long long newton_iterations_ = 0;
   long long jacobian_evaluations_ = 0;
+  std::size_t steps_ = 0;
 };
 
 }  // namespace

@@ -181,8 +181,8 @@ const std::vector<IntegratorInfo>& integrator_catalog() {
   // evaluations with their rotational rate, counted as if the body had force terms (those
   // without skip the force code, not the count). Kicks are not shared between steps: a
   // splitting evaluates at both ends of each sub-step. implicit-euler's Newton solve reuses its
-  // one evaluation; midpoint's fixed-point sweeps are at least 2 (predictor and one sweep), the
-  // figure a lower bound until it counts its own. dopri counts its own, exact evaluates none.
+  // one evaluation; midpoint's figure is its least (two Newton iterations), but it counts its
+  // own (one per iteration), as dopri does; exact evaluates none.
   static const std::vector<IntegratorInfo> catalog = {
       {K::kExplicitEuler, "explicit-euler", 1, false, false,
        "everything from the old state; energy grows, blows up on fast or extreme-ratio spins", 1},

@@ -151,7 +151,8 @@ TEST_P(DampedOrder, MatchesTheConservativeOrder) {
 INSTANTIATE_TEST_SUITE_P(SplittingFamily, DampedOrder,
                          ::testing::Values(OrderCase{K::kSplitting, 2.0, 16},
                                            OrderCase{K::kSplitting4, 4.0, 8},
-                                           OrderCase{K::kFreeRotor, 2.0, 16}),
+                                           OrderCase{K::kFreeRotor, 2.0, 16},
+                                           OrderCase{K::kMoserVeselov, 2.0, 16}),
                          [](const ::testing::TestParamInfo<OrderCase>& test_info) {
                            std::string name = integrator_info(test_info.param.kind).name;
                            for (char& ch : name)
