@@ -194,7 +194,13 @@ TEST_F(BenchCommand, CountsAndTimingSpreadAreConsistent) {
                 400u / 4u * static_cast<unsigned>(std::lround(0.04 / std::stod(row.at("dt")))));
       EXPECT_EQ(accepted, steps);  // one body
       EXPECT_EQ(rejected, 0u);
-      EXPECT_EQ(evaluations, static_cast<unsigned long long>(per_step.at(name)) * steps);
+      if (name == "midpoint") {
+        // One per Newton iteration, counted by the stepper: at least the catalog's two a step.
+        EXPECT_GE(evaluations, static_cast<unsigned long long>(per_step.at(name)) * steps);
+        EXPECT_LE(evaluations, 50u * steps);
+      } else {
+        EXPECT_EQ(evaluations, static_cast<unsigned long long>(per_step.at(name)) * steps);
+      }
     }
     // rk4 by the definition: 4 per step.
     if (name == "rk4") {

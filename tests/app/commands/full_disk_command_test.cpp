@@ -109,11 +109,12 @@ TEST_F(FullDisk, BenchResultsCsvPastTheLimit) {
 }
 
 TEST_F(FullDisk, BenchPlotCutShortByGnuplot) {
-  // Two runs: results.csv, report.md and the script fit in 8 KiB, the first plot (a 12 KB PNG)
-  // does not, and gnuplot, cut off, still exits 0.
+  // Two runs: results.csv, report.md, the script (12-16 KB: two plots per measure) and the
+  // PNGs (12-14 KB) fit in 16 KiB, the first SVG (about 28 KB) does not, and gnuplot, cut off,
+  // still exits 0.
   const auto result = limited(
-      8192, "bench " + scene_ + " --integrators rk4 --dts 0.02,0.01 --repeat 1 -o " + path("out"));
-  expect_write_error(result, "bench", path("out") + "/scene_orientation_final.png", path("out"));
+      16384, "bench " + scene_ + " --integrators rk4 --dts 0.02,0.01 --repeat 1 -o " + path("out"));
+  expect_write_error(result, "bench", path("out") + "/scene_orientation_final.svg", path("out"));
   EXPECT_THAT(result.err, HasSubstr("the picture is incomplete"));
   EXPECT_EQ(directory_entries(dir_), std::vector<std::string>{"scene.json"});
 }

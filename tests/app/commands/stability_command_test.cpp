@@ -183,27 +183,31 @@ TEST_F(QuickSuite, HeatMapPngAndSvgAreValid) {
 // ---------------------------------------------------------------------------------------------
 
 TEST(StabilityClassify, AppliesTheRulesToSignedChanges) {
+  // Changes within the 1% of the scale beyond which a run is wrong (engine/PHYSICS.md §7).
   InvariantChanges c;
   c.energy_applies = true;
   EXPECT_EQ(classify(true, c, 1e-3), StabilityOutcome::kBlewUp);
   EXPECT_EQ(classify(false, c, 1e-3), StabilityOutcome::kStable);
-  c.energy_final = -0.05;
-  c.energy_max_loss = 0.05;
-  c.energy_late_max = -0.04;
-  c.energy_late_min = -0.05;
+  c.energy_final = -0.005;
+  c.energy_max_loss = 0.005;
+  c.energy_late_max = -0.004;
+  c.energy_late_min = -0.005;
   EXPECT_EQ(classify(false, c, 1e-3), StabilityOutcome::kDamped);
-  c.energy_max_gain = 0.01;  // it also grew: not a plain loss
+  c.energy_max_gain = 0.002;  // it also grew: not a plain loss
   EXPECT_EQ(classify(false, c, 1e-3), StabilityOutcome::kDrifting);
   c.energy_max_gain = 0.0;
   c.energy_late_max = 0.0;  // a loss that swings back to E0: not damping
   EXPECT_EQ(classify(false, c, 1e-3), StabilityOutcome::kDrifting);
-  c.energy_late_max = -0.04;  // a wide bounded swing below E0: not damping
-  c.energy_late_min = -0.5;
+  c.energy_late_max = -0.004;  // a wide bounded swing below E0: not damping
+  c.energy_late_min = -0.009;
+  c.energy_max_loss = 0.009;
   EXPECT_EQ(classify(false, c, 1e-3), StabilityOutcome::kDrifting);
+  c.energy_max_loss = 0.02;  // beyond 1%: bounded, but wrong
+  EXPECT_EQ(classify(false, c, 1e-3), StabilityOutcome::kWrong);
   c = {};
   c.energy_applies = true;
-  c.energy_final = 0.02;
-  c.energy_max_gain = 0.02;
+  c.energy_final = 0.002;
+  c.energy_max_gain = 0.002;
   EXPECT_EQ(classify(false, c, 1e-3), StabilityOutcome::kDrifting);
   c = {};
   EXPECT_EQ(classify(false, c, 1e-3), StabilityOutcome::kUnchecked);
