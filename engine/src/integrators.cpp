@@ -221,8 +221,7 @@ const std::vector<IntegratorInfo>& integrator_catalog() {
       {K::kDopri, "dopri", 5, true, false,
        "adaptive Dormand-Prince 5(4) with --tolerance; the reference for forced problems", 0},
       {K::kExact, "exact", -1, false, true,
-       "closed form: torque-free bodies and heavy symmetric tops; refuses other forced bodies",
-       0},
+       "closed form: torque-free bodies and heavy symmetric tops; refuses other forced bodies", 0},
   };
   return catalog;
 }

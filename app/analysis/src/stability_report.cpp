@@ -149,7 +149,8 @@ const char* kRules =
     "move, the position (m), each the largest over the bodies and over the instants the run "
     "shares with the reference's samples (every hundredth of the run where the steps land on "
     "them, always the end; CSV `reference_instants`). The reference is the exact solution "
-    "when every body is torque-free or a heavy symmetric top, else one dopri run at tolerance 1e-13 "
+    "when every body is torque-free or a heavy symmetric top, else one dopri run at tolerance "
+    "1e-13 "
     "(`reference` column of the CSV; none when that run failed). "
     "`skipped` runs were not made (the reason is in the CSV's `note`).\n";
 

@@ -30,9 +30,9 @@ struct StabilityReference {
 };
 
 /// The case's engine::ReferenceMotion (the exact solution when every body is torque-free
-/// or a heavy symmetric top, else dopri at engine::kReferenceTolerance) sampled every `interval`: duration /
-/// 100, or for a case whose steps all divide the largest one, the smallest multiple of that
-/// step not below duration / 100 (so that every run shares every sample). "none" when that run
+/// or a heavy symmetric top, else dopri at engine::kReferenceTolerance) sampled every `interval`:
+/// duration / 100, or for a case whose steps all divide the largest one, the smallest multiple of
+/// that step not below duration / 100 (so that every run shares every sample). "none" when that run
 /// fails.
 StabilityReference stability_reference(const StabilityCase& c);
 
