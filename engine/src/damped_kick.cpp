@@ -21,6 +21,8 @@
 #include <Eigen/Eigenvalues>
 #include <unsupported/Eigen/MatrixFunctions>
 
+#include "steppers.hpp"
+
 namespace tumble::engine::steppers {
 namespace {
 
@@ -209,6 +211,17 @@ void damped_kick(const BodyModel& body, BodyState& s, double t, KickFlowCache* c
     s.velocity = y.head<3>();
     s.angular_momentum = y.tail<3>();
   }
+}
+
+void kick(const BodyModel& body, BodyState& s, double half_step, KickFlowCache* damped) {
+  if (body.forces.empty()) return;
+  if (damped != nullptr) {
+    damped_kick(body, s, half_step, damped);
+    return;
+  }
+  const Rates r = rates(body, s);
+  s.velocity += half_step * r.acceleration;
+  s.angular_momentum += half_step * r.torque;
 }
 
 }  // namespace tumble::engine::steppers

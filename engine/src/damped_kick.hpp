@@ -22,4 +22,11 @@ struct KickFlowCache {
 /// L moving) of a body with damped springs (engine/PHYSICS.md §3, "Splitting family").
 void damped_kick(const BodyModel& body, BodyState& s, double t, KickFlowCache* cache = nullptr);
 
+/// The half kick of the kick-drift-kick integrators (the splittings, free-rotor,
+/// moser-veselov): v and world L from the forces and torques at `s`, exact for forces that
+/// depend on x and q only. `damped` (non-null when the stepper found has_damping() true) takes
+/// the exact flow of the velocity-dependent kick instead, reusing the flow it caches when the
+/// kick repeats at the same x, q and step.
+void kick(const BodyModel& body, BodyState& s, double half_step, KickFlowCache* damped);
+
 }  // namespace tumble::engine::steppers

@@ -33,20 +33,6 @@
 namespace tumble::engine::steppers {
 namespace {
 
-/// Half kick: v and world L from the forces and torques at `s`, as the splittings kick: with
-/// spring damping the exact flow of the damped kick (damped_kick.hpp), which keeps the
-/// composition symmetric and so second order.
-void half_kick(const BodyModel& body, BodyState& s, double half_step, KickFlowCache* damped) {
-  if (body.forces.empty()) return;
-  if (damped != nullptr) {
-    damped_kick(body, s, half_step, damped);
-    return;
-  }
-  const Rates r = rates(body, s);
-  s.velocity += half_step * r.acceleration;
-  s.angular_momentum += half_step * r.torque;
-}
-
 /// The relative rotation Omega of one DMV step from body momentum `m`, as a unit quaternion;
 /// NaN when Newton does not converge (a step far too long for the spin).
 Eigen::Quaterniond dmv_rotation(const Eigen::Vector3d& moments, const Eigen::Vector3d& m,
@@ -81,12 +67,12 @@ class MoserVeselov final : public BodyStepper {
   explicit MoserVeselov(const BodyModel& body) : body_(body), damped_(has_damping(body)) {}
   void step(BodyState& s, double, double h) override {
     KickFlowCache* damped = damped_ ? &kick_flow_ : nullptr;
-    half_kick(body_, s, 0.5 * h, damped);
+    kick(body_, s, 0.5 * h, damped);
     if (!body_.pivoted) s.position += h * s.velocity;
     const Eigen::Vector3d m = s.orientation.conjugate() * s.angular_momentum;  // body frame
     // R_{n+1} = R_n Omega; the body momentum R_{n+1}^T L is then Omega^T m_n.
     s.orientation = renormalized(s.orientation * dmv_rotation(body_.moments, m, h));
-    half_kick(body_, s, 0.5 * h, damped);
+    kick(body_, s, 0.5 * h, damped);
   }
 
  private:

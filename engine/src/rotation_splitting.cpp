@@ -29,20 +29,6 @@
 namespace tumble::engine::steppers {
 namespace {
 
-/// Half kick: v and world L from the forces and torques at `s`. `damped` (non-null when the
-/// stepper found has_damping() true) takes the exact flow of the velocity-dependent kick
-/// instead, reusing the flow it caches when the kick repeats at the same x, q and step.
-void kick(const BodyModel& body, BodyState& s, double half_step, KickFlowCache* damped) {
-  if (body.forces.empty()) return;
-  if (damped != nullptr) {
-    damped_kick(body, s, half_step, damped);
-    return;
-  }
-  const Rates r = rates(body, s);
-  s.velocity += half_step * r.acceleration;
-  s.angular_momentum += half_step * r.torque;
-}
-
 /// Free rotation by the symmetric splitting R1(h/2) R2(h/2) R3(h) R2(h/2) R1(h/2). The five
 /// turns are composed as one small turn, added to the compensated `orientation`, so the
 /// rounding of a step is relative to the turn (compensated_orientation.hpp).

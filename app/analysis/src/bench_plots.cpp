@@ -11,17 +11,6 @@
 namespace tumble::app {
 namespace {
 
-/// The integrators of a scene's cases, in order of first appearance.
-std::vector<std::string> integrators_of(const BenchOutcome& outcome, std::size_t scene) {
-  std::vector<std::string> names;
-  for (const BenchCase& c : outcome.cases) {
-    if (c.scene == scene && std::find(names.begin(), names.end(), c.integrator) == names.end()) {
-      names.push_back(c.integrator);
-    }
-  }
-  return names;
-}
-
 /// One plot of scene `s`: `measure` against run time or against evaluations.
 LogLogPlot measure_plot(const BenchOutcome& outcome, std::size_t s, const ErrorMeasure& measure,
                         bool against_evaluations, const std::filesystem::path& dir) {

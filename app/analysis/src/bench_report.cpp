@@ -29,7 +29,14 @@ std::string csv_text(const std::string& text) {
   return out + "\"";
 }
 
-/// The integrators of a scene's cases, in order of first appearance.
+/// "dt 0.01" or "tol 1e-08".
+std::string step_text(const BenchCase& c) {
+  return c.tolerance ? "tol " + number(*c.tolerance, "%.3g") : "dt " + number(c.dt, "%.4g");
+}
+
+}  // namespace
+
+// The integrators of a scene's cases, in order of first appearance.
 std::vector<std::string> integrators_of(const BenchOutcome& outcome, std::size_t scene) {
   std::vector<std::string> names;
   for (const BenchCase& c : outcome.cases) {
@@ -39,13 +46,6 @@ std::vector<std::string> integrators_of(const BenchOutcome& outcome, std::size_t
   }
   return names;
 }
-
-/// "dt 0.01" or "tol 1e-08".
-std::string step_text(const BenchCase& c) {
-  return c.tolerance ? "tol " + number(*c.tolerance, "%.3g") : "dt " + number(c.dt, "%.4g");
-}
-
-}  // namespace
 
 const std::vector<std::string>& results_columns() {
   static const std::vector<std::string> columns = {"scene",

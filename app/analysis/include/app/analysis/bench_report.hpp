@@ -28,6 +28,10 @@ struct BenchOutcome {
 /// The columns of results.csv, in order.
 const std::vector<std::string>& results_columns();
 
+/// The integrators of scene `scene`'s cases, in order of first appearance (the row order of
+/// the report and the curve order of the plots).
+std::vector<std::string> integrators_of(const BenchOutcome& outcome, std::size_t scene);
+
 /// Writes results.csv: a header, then one row per case (17 significant digits; the error
 /// columns are empty for blown-up runs).
 void write_results_csv(const BenchOutcome& outcome, const std::filesystem::path& file);
