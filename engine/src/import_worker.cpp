@@ -44,6 +44,9 @@ namespace tumble::engine::detail {
 namespace {
 
 constexpr std::size_t kMaxRequest = std::size_t{1} << 20;
+/// CPU seconds under which a worker that missed its wall-clock deadline counts as stalled
+/// (blocked, not reading) rather than slow.
+constexpr double kStalledCpuSeconds = 1.0;
 
 /// Exact reads and writes on a socket; false when the other end is gone.
 bool send_all(int fd, const void* data, std::size_t size) {
@@ -339,7 +342,14 @@ TriangleMesh Worker::run(const std::filesystem::path& file, const ImportLimits& 
   // A crash, a kill or a lost answer may be an earlier file's doing; a limit or an
   // interruption is not.
   const int signal = WIFSIGNALED(end.status) ? WTERMSIG(end.status) : 0;
-  retry = files_ > 0 && !timed_out && signal != SIGXCPU && signal != SIGINT && signal != SIGTERM;
+  // A worker that sat out the whole wall-clock deadline on next to no CPU time was not reading
+  // (a looping reader meets its CPU limit first): it was blocked. Under AddressSanitizer a
+  // worker forked while another thread held one of the runtime's locks waits on it for ever
+  // (GCC 12's libasan does not reset them in the child; glibc resets malloc's). Not the
+  // file's doing either: once more in a fresh worker.
+  const bool stalled = timed_out && end.cpu_seconds < kStalledCpuSeconds;
+  retry = stalled ||
+          (files_ > 0 && !timed_out && signal != SIGXCPU && signal != SIGINT && signal != SIGTERM);
   try {
     TriangleMesh mesh = judge_answer(file, limits, what, stats, message_, end);
     forget();
