@@ -21,45 +21,18 @@
 #include "engine/rigid_body.hpp"
 #include "engine/simulation.hpp"
 #include "engine/torque_free_exact.hpp"
+#include "rigid_body_fixtures.hpp"
 #include "support/input_error.hpp"
 
 namespace tumble::engine {
 namespace {
 
+using namespace fixtures;
+
 using ::testing::HasSubstr;
 using K = IntegratorKind;
 
 const Eigen::Vector3d kMoments(1.0, 2.0, 3.0);
-const Eigen::Quaterniond kOrientation(Eigen::AngleAxisd(0.7,
-                                                        Eigen::Vector3d(1, 2, 3).normalized()));
-
-BodyModel free_body(const Eigen::Vector3d& moments) {
-  BodyModel body;
-  body.name = "free";
-  body.mass = 1.0;
-  body.moments = moments;
-  return body;
-}
-
-/// A state turning at `omega_body` (principal frame) with orientation `q`.
-Eigen::Vector3d body_omega(const BodyModel& body, const BodyState& s) {
-  return (s.orientation.conjugate() * s.angular_momentum).cwiseQuotient(body.moments);
-}
-
-double rotational_energy(const BodyModel& body, const BodyState& s) {
-  const Eigen::Vector3d w = body_omega(body, s);
-  return 0.5 * w.dot(body.moments.cwiseProduct(w));
-}
-
-/// Runs `steps` fixed steps of `kind` from `s`.
-BodyState run(IntegratorKind kind, const BodyModel& body, BodyState s, double h, int steps,
-              double tolerance = 1e-10) {
-  StepSettings settings;
-  settings.tolerance = tolerance;
-  const auto stepper = make_stepper(kind, body, s, settings);
-  for (int i = 0; i < steps; ++i) stepper->step(s, i * h, h);
-  return s;
-}
 
 /// Error against the exact solution at t: the larger of the orientation angle (rad) and the
 /// relative error of the body angular velocity.
@@ -560,11 +533,7 @@ TEST(Dopri, AStateChangedFromOutsideIsTakenUp) {
 // an evaluation: evaluations = 1 + 6 attempts holds only without restarts), and its steps must
 // not depend on the output step.
 TEST(Dopri, APivotedTopInASimulationKeepsItsOwnSteps) {
-  BodyModel top = free_body(Eigen::Vector3d(1.25, 1.25, 0.5));
-  top.name = "top";
-  top.pivoted = true;
-  top.center_offset = Eigen::Vector3d(0.0, 0.0, 0.5);
-  top.forces = {Gravity{Eigen::Vector3d(0.0, 0.0, -9.81)}};
+  const BodyModel top = heavy_top(Eigen::Vector3d(1.25, 1.25, 0.5));
   const BodyState start =
       spinning_state(top, Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX())),
                      Eigen::Vector3d(0.0, 0.0, 20.0));
@@ -595,11 +564,7 @@ TEST(Exact, RefusesBodiesWithTorques) {
   BodyModel torqued = free_body(kMoments);
   torqued.name = "spinner";
   torqued.forces = {ConstantTorque{Eigen::Vector3d(0.0, 0.0, 1.0), false}};
-  BodyModel top = free_body(kMoments);
-  top.name = "top";
-  top.pivoted = true;
-  top.center_offset = Eigen::Vector3d(0.0, 0.0, 0.5);
-  top.forces = {Gravity{Eigen::Vector3d(0.0, 0.0, -9.81)}};
+  BodyModel top = heavy_top(kMoments);
   BodyModel sprung = free_body(kMoments);
   sprung.name = "sprung";
   sprung.forces = {Spring{Eigen::Vector3d::Zero(), Eigen::Vector3d(0.1, 0.0, 0.0), 10.0, 0.0}};

@@ -12,30 +12,17 @@
 #include "engine/integrators.hpp"
 #include "engine/rigid_body.hpp"
 #include "engine/torque_free_exact.hpp"
+#include "rigid_body_fixtures.hpp"
 
 namespace tumble::engine {
 namespace {
 
+using namespace fixtures;
+
 using K = IntegratorKind;
-
-const Eigen::Quaterniond kOrientation(Eigen::AngleAxisd(0.7,
-                                                        Eigen::Vector3d(1, 2, 3).normalized()));
-
-BodyModel free_body(const Eigen::Vector3d& moments) {
-  BodyModel body;
-  body.name = "free";
-  body.moments = moments;
-  return body;
-}
 
 Eigen::Vector3d body_momentum(const BodyState& s) {
   return s.orientation.conjugate() * s.angular_momentum;
-}
-
-BodyState run(K kind, const BodyModel& body, BodyState s, double h, int steps) {
-  const auto stepper = make_stepper(kind, body, s, {});
-  for (int i = 0; i < steps; ++i) stepper->step(s, i * h, h);
-  return s;
 }
 
 /// log2 of successive error ratios.
@@ -124,11 +111,7 @@ TEST(MoserVeselov, FreeBodyKeepsWorldMomentumAndEnergyToRounding) {
 // With torques the kicks make a symmetric composition: second order on a heavy top (gravity on
 // a pivoted asymmetric body), against rk4 at a 64 times finer step.
 TEST(MoserVeselov, SecondOrderWithGravityTorque) {
-  BodyModel top = free_body(Eigen::Vector3d(1.25, 1.5, 0.5));
-  top.name = "top";
-  top.pivoted = true;
-  top.center_offset = Eigen::Vector3d(0.0, 0.0, 0.5);
-  top.forces = {Gravity{Eigen::Vector3d(0.0, 0.0, -9.81)}};
+  const BodyModel top = heavy_top(Eigen::Vector3d(1.25, 1.5, 0.5));
   const BodyState start =
       spinning_state(top, Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX())),
                      Eigen::Vector3d(0.5, 0.0, 8.0));

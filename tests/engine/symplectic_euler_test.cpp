@@ -12,36 +12,14 @@
 #include "engine/integrators.hpp"
 #include "engine/rigid_body.hpp"
 #include "engine/torque_free_exact.hpp"
+#include "rigid_body_fixtures.hpp"
 
 namespace tumble::engine {
 namespace {
 
+using namespace fixtures;
+
 using K = IntegratorKind;
-
-const Eigen::Quaterniond kOrientation(Eigen::AngleAxisd(0.7,
-                                                        Eigen::Vector3d(1, 2, 3).normalized()));
-
-BodyModel free_body(const Eigen::Vector3d& moments) {
-  BodyModel body;
-  body.name = "free";
-  body.moments = moments;
-  return body;
-}
-
-Eigen::Vector3d body_omega(const BodyModel& body, const BodyState& s) {
-  return (s.orientation.conjugate() * s.angular_momentum).cwiseQuotient(body.moments);
-}
-
-double rotational_energy(const BodyModel& body, const BodyState& s) {
-  const Eigen::Vector3d m = s.orientation.conjugate() * s.angular_momentum;
-  return 0.5 * m.dot(m.cwiseQuotient(body.moments));
-}
-
-BodyState run(K kind, const BodyModel& body, BodyState s, double h, int steps) {
-  const auto stepper = make_stepper(kind, body, s, {});
-  for (int i = 0; i < steps; ++i) stepper->step(s, i * h, h);
-  return s;
-}
 
 // First order: the error at t = 4 s (a bit more than one flip of J = (1, 2, 3) spun at
 // (0.4, 0.8, 0.6) rad/s) halves with dt. Error: the larger of the orientation angle and the
