@@ -4,12 +4,16 @@
 
 #include <algorithm>
 #include <cfloat>
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "backends/imgui_impl_opengl3.h"
+#include "overlay_plot.hpp"
 #include "render/camera_math.hpp"
+#include "render/overlay_layout.hpp"
 
 namespace tumble::render::detail {
 
@@ -33,10 +37,46 @@ class ContextGuard {
   ImGuiContext* previous_;
 };
 
+int font_key(float font_px) {
+  return static_cast<int>(std::lround(std::clamp(font_px, kMinFontPx, kMaxFontPx)));
+}
+
+/// A label's text height: its own, or (0) the frame's default.
+float label_font_px(const Label& label, int width, int height) {
+  return label.font_px > 0.0f ? label.font_px : overlay_font_px(width, height);
+}
+
 }  // namespace
 
 std::string OverlayPass::panel_id(const OverlayPanel& panel, int index) {
-  return panel.title + "##panel" + std::to_string(index);
+  // The size is part of the id: a panel drawn at a new size is laid out afresh.
+  return panel.title + "##panel" + std::to_string(index) + "@" +
+         std::to_string(font_key(panel.font_px));
+}
+
+ImFont* OverlayPass::font(float font_px) const {
+  return fonts_.at(font_key(font_px));
+}
+
+void OverlayPass::ensure_fonts(const DrawList& frame, int width, int height) {
+  std::vector<int> sizes;
+  for (const OverlayPanel& panel : frame.panels) sizes.push_back(font_key(panel.font_px));
+  for (const Label& label : frame.labels) {
+    sizes.push_back(font_key(label_font_px(label, width, height)));
+  }
+  bool added = false;
+  ImGuiIO& io = ImGui::GetIO();
+  for (int px : sizes) {
+    if (fonts_.count(px) != 0) continue;
+    // The default font rasterised at the size itself: scaling a 13 px bitmap would blur it.
+    ImFontConfig config;
+    config.SizePixels = static_cast<float>(px);
+    fonts_[px] = io.Fonts->AddFontDefault(&config);
+    added = true;
+  }
+  if (!added) return;
+  ImGui_ImplOpenGL3_DestroyFontsTexture();
+  ImGui_ImplOpenGL3_CreateFontsTexture();
 }
 
 OverlayPass::OverlayPass() {
@@ -52,10 +92,16 @@ OverlayPass::OverlayPass() {
   style.WindowRounding = 4.0f;
   style.Colors[ImGuiCol_WindowBg].w = 0.72f;
   style.Colors[ImGuiCol_FrameBg] = ImVec4(0.10f, 0.10f, 0.12f, 0.60f);
+  base_style_ = std::make_unique<ImGuiStyle>(style);
   if (!ImGui_ImplOpenGL3_Init("#version 330 core")) {
     ImGui::DestroyContext(context_);
     throw std::runtime_error("renderer: ImGui OpenGL3 backend failed to initialise");
   }
+  // The default size first, then the GL objects with its atlas.
+  ImFontConfig config;
+  config.SizePixels = kDefaultFontPx;
+  fonts_[font_key(kDefaultFontPx)] = io.Fonts->AddFontDefault(&config);
+  ImGui_ImplOpenGL3_CreateDeviceObjects();
 }
 
 OverlayPass::~OverlayPass() {
@@ -79,45 +125,48 @@ void OverlayPass::build(const DrawList& frame, int width, int height) {
   int index = 0;
   for (const OverlayPanel& panel : frame.panels) {
     const std::string id = panel_id(panel, index++);
+    // Paddings, spacings and rounding follow the text size.
+    ImGui::GetStyle() = *base_style_;
+    ImGui::GetStyle().ScaleAllSizes(static_cast<float>(font_key(panel.font_px)) / kDefaultFontPx);
+    ImGui::PushFont(font(panel.font_px));
     ImGui::SetNextWindowPos(ImVec2(panel.position_px.x(), panel.position_px.y()));
     ImGui::SetNextWindowSizeConstraints(ImVec2(panel.width_px, 0.0f),
                                         ImVec2(panel.width_px, FLT_MAX));
     ImGui::Begin(id.c_str(), nullptr,
                  panel.title.empty() ? flags | ImGuiWindowFlags_NoTitleBar : flags);
     for (const std::string& line : panel.lines) ImGui::TextUnformatted(line.c_str());
-    for (const Plot& plot : panel.plots) {
-      if (plot.values.empty()) continue;
-      const auto [low, high] = std::minmax_element(plot.values.begin(), plot.values.end());
-      char caption[160];
-      std::snprintf(caption, sizeof caption, "%s  %.4g", plot.name.c_str(),
-                    static_cast<double>(plot.values.back()));
-      const std::string plot_id = "##plot" + plot.name;
-      ImGui::PlotLines(plot_id.c_str(), plot.values.data(), static_cast<int>(plot.values.size()), 0,
-                       caption, plot.min.value_or(*low), plot.max.value_or(*high),
-                       ImVec2(ImGui::GetContentRegionAvail().x, plot.height_px));
-    }
+    for (const Plot& plot : panel.plots) draw_plot(plot);
     ImGui::End();
+    ImGui::PopFont();
   }
+  ImGui::GetStyle() = *base_style_;
+  draw_labels(frame, width, height);
+  ImGui::Render();
+}
 
-  // Labels: text with a one-pixel dark shadow, anchored in 3D or placed on screen.
+/// Labels: text with a one-pixel dark shadow, anchored in 3D or placed on screen.
+void OverlayPass::draw_labels(const DrawList& frame, int width, int height) {
   ImDrawList* draw_list = ImGui::GetForegroundDrawList();
   for (const Label& label : frame.labels) {
+    const float px = static_cast<float>(font_key(label_font_px(label, width, height)));
     ImVec2 position(label.screen_px.x(), label.screen_px.y());
     if (label.anchor) {
       const Eigen::Vector3f pixel = project_to_pixels(frame.camera, width, height, *label.anchor);
       if (!(pixel.z() > 0.0f)) continue;  // behind the camera
-      position = ImVec2(pixel.x() + 4.0f, pixel.y() - ImGui::GetFontSize() - 2.0f);
+      position = ImVec2(pixel.x() + 0.3f * px, pixel.y() - px - 0.15f * px);
     }
-    const ImVec2 shadow(position.x + 1.0f, position.y + 1.0f);
-    draw_list->AddText(shadow, IM_COL32(0, 0, 0, static_cast<int>(180 * label.colour.a)),
+    const float offset = std::max(1.0f, std::round(px / kDefaultFontPx));
+    const ImVec2 shadow(position.x + offset, position.y + offset);
+    draw_list->AddText(font(px), px, shadow,
+                       IM_COL32(0, 0, 0, static_cast<int>(180 * label.colour.a)),
                        label.text.c_str());
-    draw_list->AddText(position, to_imgui(label.colour), label.text.c_str());
+    draw_list->AddText(font(px), px, position, to_imgui(label.colour), label.text.c_str());
   }
-  ImGui::Render();
 }
 
 void OverlayPass::draw(const DrawList& frame, int width, int height) {
   ContextGuard guard(context_);
+  ensure_fonts(frame, width, height);
   // ImGui sizes an auto-fitting window one frame after it first appears: lay out a hidden
   // frame first whenever a panel is new, so that its first image already shows it.
   bool new_panel = false;

@@ -37,6 +37,12 @@ void add_video_options(CLI::App& command, VideoOptions& options, const std::stri
           "--time-scale", [&](double value) { options.time_scale = value; },
           "Simulated seconds per second of video S (default 1; 0.5 is slow motion)")
       ->type_name("S");
+  command
+      .add_option_function<double>(
+          "--font-scale", [&](double value) { options.font_scale = value; },
+          "Overlay text size F times the frame's own (default 1: 13 px at 1280x720, proportional "
+          "to the frame, never under 10 px; 0.25 to 8)")
+      ->type_name("F");
   command.add_flag("-q,--quiet", options.quiet,
                    "No progress bar and no summary line (warnings and errors still print)");
 }

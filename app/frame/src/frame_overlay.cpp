@@ -1,11 +1,19 @@
 // The overlay panel of a frame: the scene's title, the integrator and time, a legend of the
 // items shown, the drift plots of the invariants (InvariantDrift, recorded at every observed
 // frame) and the blow-up, when there is one.
+//
+// Size rule: the text is 13 px at 1280x720, proportional to the frame and to render.font_scale,
+// never under 10 px; paddings and plot heights follow it. The panel is kept within 18 % of the
+// frame's pixels (the bound is 20 %; the estimate below is within a few pixels of ImGui's
+// layout): when it would be larger, the legend lines go first (last first), then the plots
+// shrink to twice the text height, then the |L| plot and finally the energy plot are dropped.
+// The title, integrator, time and blow-up lines always stay.
 #include <cmath>
 #include <cstdio>
 
 #include "engine/integrators.hpp"
 #include "frame_builder_impl.hpp"
+#include "render/overlay_layout.hpp"
 
 namespace tumble::app {
 namespace {
@@ -16,6 +24,50 @@ std::string format(const char* pattern, double a, double b = 0.0) {
   char buffer[160];
   std::snprintf(buffer, sizeof buffer, pattern, a, b);
   return buffer;
+}
+
+/// Share of the frame's pixels the panel may cover.
+constexpr double kCoverageBudget = 0.18;
+
+/// The panel's pixel size as ImGui lays it out with the style scaled by font_px / 13 (window
+/// padding 8, item spacing 4, frame padding 4 x 3 at 13 px).
+struct PanelSize {
+  float width = 0.0f;
+  float height = 0.0f;
+};
+
+PanelSize panel_size(const render::OverlayPanel& panel) {
+  const float f = panel.font_px;
+  const float u = f / render::kDefaultFontPx;
+  std::size_t chars = panel.title.size() + 1;
+  for (const std::string& line : panel.lines) chars = std::max(chars, line.size());
+  for (const render::Plot& plot : panel.plots) chars = std::max(chars, plot.name.size() + 12);
+  PanelSize size;
+  size.width = render::overlay_text_width(chars, f) + 16.0f * u;
+  const float line = f + 4.0f * u;
+  size.height = (f + 6.0f * u) + 16.0f * u + static_cast<float>(panel.lines.size()) * line;
+  for (const render::Plot& plot : panel.plots) size.height += line + plot.height_px + 4.0f * u;
+  return size;
+}
+
+/// Applies the size rule above to `panel` (font_px, legend lines and plots already set) for a
+/// `width` x `height` frame; `legend_lines` of panel.lines (from index `first_legend`) may go.
+void fit_to_frame(render::OverlayPanel& panel, std::size_t first_legend, int width, int height) {
+  const double budget = kCoverageBudget * static_cast<double>(width) * height;
+  const auto area = [&] {
+    const PanelSize size = panel_size(panel);
+    return static_cast<double>(std::min(size.width, static_cast<float>(width))) * size.height;
+  };
+  std::size_t legend = panel.lines.size() - first_legend;
+  while (legend > 0 && area() > budget) {
+    panel.lines.erase(panel.lines.begin() + static_cast<long>(first_legend + --legend));
+  }
+  for (render::Plot& plot : panel.plots) {
+    if (area() > budget) plot.height_px = std::min(plot.height_px, 2.0f * panel.font_px);
+  }
+  while (!panel.plots.empty() && area() > budget) panel.plots.pop_back();
+  const float margin = panel.position_px.x();
+  panel.width_px = std::min(panel_size(panel).width, static_cast<float>(width) - 2.0f * margin);
 }
 
 }  // namespace
@@ -47,37 +99,51 @@ void FrameBuilder::Impl::add_overlay(const engine::Simulation& simulation, std::
                                      const ShowSettings& show, render::DrawList& list) const {
   render::OverlayPanel panel;
   panel.title = title;
-  // Wide enough for the title (about 7 px per character of ImGui's default font).
-  panel.width_px = std::clamp(7.2f * static_cast<float>(title.size()) + 24.0f, 320.0f,
-                              std::max(320.0f, 0.45f * static_cast<float>(settings.width)));
+  panel.font_px = render::overlay_font_px(settings.width, settings.height, settings.font_scale);
+  const float unit = panel.font_px / render::kDefaultFontPx;
+  panel.position_px = Eigen::Vector2f(10.0f * unit, 10.0f * unit);
   const engine::SimulationSettings& run = simulation.settings();
   panel.lines.push_back("integrator " + engine::integrator_info(run.integrator).name +
                         format(", dt = %g s", run.dt));
   panel.lines.push_back(
       format("t = %.3f s of %g s", simulation.time(), simulation.settings().duration));
-  if (show.angular_velocity) panel.lines.push_back("yellow arrow: angular velocity w");
-  if (show.angular_momentum) panel.lines.push_back("violet arrow: angular momentum L");
-  if (show.herpolhode) panel.lines.push_back("orange: herpolhode (w tip in the world)");
-  if (show.polhode) panel.lines.push_back("blue: polhode (w tip in the body)");
-  const auto until = static_cast<long>(end);
-  // Drift when the quantity is an invariant of the scene, change otherwise.
-  panel.plots.push_back({conservative ? "energy drift" : "energy change",
-                         {energy_drift.begin(), energy_drift.begin() + until},
-                         std::nullopt,
-                         std::nullopt,
-                         50.0f});
-  panel.plots.push_back({torque_free ? "|L| drift" : "|L| change",
-                         {momentum_drift.begin(), momentum_drift.begin() + until},
-                         std::nullopt,
-                         std::nullopt,
-                         50.0f});
   if (const auto& blow_up = simulation.blow_up()) {
     const std::string line =
         format("blew up at t = %.4g s", blow_up->time) + " (" + blow_up->reason + ")";
     panel.lines.push_back(line);
-    list.labels.push_back({line, std::nullopt,
-                           Eigen::Vector2f(12.0f, static_cast<float>(settings.height) - 32.0f),
-                           kBlowUpColour});
+    list.labels.push_back(
+        {line, std::nullopt,
+         Eigen::Vector2f(panel.position_px.x(), static_cast<float>(settings.height) -
+                                                    panel.font_px - panel.position_px.y()),
+         kBlowUpColour, panel.font_px});
+  }
+  const std::size_t first_legend = panel.lines.size();
+  if (show.angular_velocity) panel.lines.push_back("yellow arrow: angular velocity w");
+  if (show.angular_momentum) panel.lines.push_back("violet arrow: angular momentum L");
+  if (show.herpolhode) panel.lines.push_back("orange: herpolhode (w tip in the world)");
+  if (show.polhode) panel.lines.push_back("blue: polhode (w tip in the body)");
+  // Drift when the quantity is an invariant of the scene, change otherwise; relative drifts
+  // span decades (1e-15 to 1e-1), hence the log axis.
+  const auto until = static_cast<long>(end);
+  const float plot_height = std::clamp(0.06f * static_cast<float>(settings.height),
+                                       2.5f * panel.font_px, 5.0f * panel.font_px);
+  render::Plot energy{conservative ? "energy drift" : "energy change",
+                      {energy_drift.begin(), energy_drift.begin() + until},
+                      std::nullopt,
+                      std::nullopt,
+                      plot_height,
+                      render::PlotAxis::kLog};
+  render::Plot momentum{torque_free ? "|L| drift" : "|L| change",
+                        {momentum_drift.begin(), momentum_drift.begin() + until},
+                        std::nullopt,
+                        std::nullopt,
+                        plot_height,
+                        render::PlotAxis::kLog};
+  panel.plots = {std::move(energy), std::move(momentum)};
+  fit_to_frame(panel, first_legend, settings.width, settings.height);
+  // Labels drawn so far (w, L) get the panel's text size.
+  for (render::Label& label : list.labels) {
+    if (label.font_px <= 0.0f) label.font_px = panel.font_px;
   }
   list.panels.push_back(std::move(panel));
 }

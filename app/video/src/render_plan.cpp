@@ -58,6 +58,14 @@ RenderSettings render_settings(const RenderOptions& options, const SceneDescript
   }
   if (options.time_scale)
     settings.time_scale = positive_option(*options.time_scale, "--time-scale");
+  if (options.font_scale) {
+    if (!(*options.font_scale >= kMinFontScale && *options.font_scale <= kMaxFontScale)) {
+      throw InputError("--font-scale: expected a text scale from " + printf_number(kMinFontScale) +
+                       " to " + printf_number(kMaxFontScale) + ", got " +
+                       printf_number(*options.font_scale));
+    }
+    settings.font_scale = *options.font_scale;
+  }
   if (options.antialiasing) {
     if (*options.antialiasing < 1 || *options.antialiasing > kMaxAntialiasing) {
       throw InputError("--aa: expected samples per pixel from 1 to " +

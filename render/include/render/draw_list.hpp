@@ -70,15 +70,28 @@ struct Label {
   std::optional<Eigen::Vector3f> anchor;  ///< 3D anchor; when empty, `screen_px` is used
   Eigen::Vector2f screen_px = Eigen::Vector2f::Zero();  ///< top-left of the text, pixels
   Rgba colour{1.0f, 1.0f, 1.0f, 1.0f};
+  /// Text height in pixels; 0: the frame's default, render::overlay_font_px(width, height).
+  float font_px = 0.0f;
 };
 
-/// A small time-series plot in an overlay panel.
+/// How a plot's vertical axis maps values.
+enum class PlotAxis {
+  kLinear,  ///< the values themselves
+  kLog,     ///< log10 of |value|, floored at Plot::log_floor (quantities spanning decades)
+};
+
+/// A small time-series plot in an overlay panel: the curve between tick-labelled axes, with its
+/// name and current value printed above it (outside the curve).
 struct Plot {
   std::string name;
   std::vector<float> values;
-  std::optional<float> min;  ///< fixed lower bound of the vertical axis (default: data min)
-  std::optional<float> max;  ///< fixed upper bound of the vertical axis (default: data max)
-  float height_px = 60.0f;
+  /// Fixed bounds of the vertical axis (default: the data's range); on a log axis they bound
+  /// |value|. Several plots given the same bounds share one scale.
+  std::optional<float> min;
+  std::optional<float> max;
+  float height_px = 60.0f;  ///< height of the curve's area (the caption line is extra)
+  PlotAxis axis = PlotAxis::kLinear;
+  float log_floor = 1e-16f;  ///< smallest |value| shown on a log axis
 };
 
 /// A translucent panel with a title, lines of text and plots (HUD of a video).
@@ -88,6 +101,8 @@ struct OverlayPanel {
   float width_px = 280.0f;
   std::vector<std::string> lines;
   std::vector<Plot> plots;
+  /// Text height in pixels; paddings and spacings scale with it (13: ImGui's default size).
+  float font_px = 13.0f;
 };
 
 /// A perspective pinhole camera.

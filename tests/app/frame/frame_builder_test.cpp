@@ -205,8 +205,12 @@ struct PoinsotRun {
   render::DrawList list;
 };
 
-PoinsotRun run_brick(const std::string& render, const std::string& integrator = "rk4") {
-  const SceneSetup setup(brick_scene(render, integrator));
+/// `width` x `height`: the frame the overlay is laid out for (the draw list is not rendered).
+PoinsotRun run_brick(const std::string& render, const std::string& integrator = "rk4",
+                     int width = kWidth, int height = kHeight) {
+  SceneSetup setup(brick_scene(render, integrator));
+  setup.settings.width = width;
+  setup.settings.height = height;
   PoinsotRun run{setup.simulation(), {}};
   FrameBuilder builder = setup.builder();
   for (int frame = 0; frame <= 180; ++frame) {
@@ -382,7 +386,7 @@ TEST(FrameBuilder, OverlayOffMeansNoPanelsOrLabels) {
 }
 
 TEST(FrameBuilder, OverlayShowsTitleIntegratorTimeAndDriftPlots) {
-  const PoinsotRun run = run_brick(R"({})");
+  const PoinsotRun run = run_brick(R"({})", "rk4", 1280, 720);
   ASSERT_EQ(run.list.panels.size(), 1u);
   const render::OverlayPanel& panel = run.list.panels[0];
   EXPECT_EQ(panel.title, "test");  // the scene's name: its file's stem
@@ -391,6 +395,8 @@ TEST(FrameBuilder, OverlayShowsTitleIntegratorTimeAndDriftPlots) {
   EXPECT_THAT(panel.lines[0], HasSubstr("dt = 0.002 s"));
   EXPECT_THAT(panel.lines[1], HasSubstr("t = 6.000 s"));
   ASSERT_EQ(panel.plots.size(), 2u);
+  // Relative drifts span decades: log axes.
+  for (const render::Plot& plot : panel.plots) EXPECT_EQ(plot.axis, render::PlotAxis::kLog);
   // One value per observed frame, starting at zero drift; RK4 keeps the energy to ~1e-6 here.
   for (const render::Plot& plot : panel.plots) {
     ASSERT_EQ(plot.values.size(), 181u);

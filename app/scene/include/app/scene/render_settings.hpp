@@ -54,6 +54,9 @@ struct ShowSettings {
 inline constexpr int kMaxImageSide = 8192;   ///< pixels
 inline constexpr double kMaxFps = 240.0;     ///< frames per second
 inline constexpr int kMaxAntialiasing = 16;  ///< samples per pixel
+/// Limits of the overlay's text scale (render.font_scale, --font-scale).
+inline constexpr double kMinFontScale = 0.25;
+inline constexpr double kMaxFontScale = 8.0;
 
 /// Everything `tumble render` needs beyond the simulation.
 struct RenderSettings {
@@ -64,6 +67,9 @@ struct RenderSettings {
   int antialiasing = 1;     ///< samples per pixel (1: off)
   CameraSettings camera;
   ShowSettings show;
+  /// Text size of the overlay relative to the frame's own (1: 13 px at 1280x720, proportional
+  /// to the frame; the text is never drawn under 10 px).
+  double font_scale = 1.0;
 };
 
 /// Reads a scene's `render` object (all keys optional; unknown keys, wrong types and
