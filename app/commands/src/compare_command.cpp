@@ -12,6 +12,7 @@
 // - A run that blows up holds its last good state (RenderJob does that); the others go on and
 //   the command ends with status 3 after one warning line per blown-up run.
 #include "app/commands/compare_command.hpp"
+#include "app/commands/compare_panels.hpp"
 
 #include "app/scene/option_lists.hpp"
 #include "app/support/printf_number.hpp"
@@ -99,13 +100,10 @@ std::string blow_up_text(const engine::BlowUp& blow_up) {
 void fit_panel(render::DrawList& list, const Run& run, const GridLayout& grid) {
   if (list.panels.empty()) return;
   const engine::Simulation& simulation = run.job->simulation();
-  render::OverlayPanel& panel = list.panels.front();
-  panel.title = run_title(run);
-  panel.width_px = std::min(260.0f, static_cast<float>(grid.tile_width) - 20.0f);
-  panel.lines = {"t = " + printf_number(simulation.time(), "%.3f") + " s"};
-  if (const auto& blow_up = simulation.blow_up()) panel.lines.push_back(blow_up_text(*blow_up));
-  const float plot_height = std::clamp(0.1f * static_cast<float>(grid.tile_height), 14.0f, 50.0f);
-  for (render::Plot& plot : panel.plots) plot.height_px = plot_height;
+  std::vector<std::string> lines = {"t = " + printf_number(simulation.time(), "%.3f") + " s"};
+  if (const auto& blow_up = simulation.blow_up()) lines.push_back(blow_up_text(*blow_up));
+  fit_tile_panel(list.panels.front(), run_title(run), std::move(lines), grid.tile_width,
+                 grid.tile_height);
 }
 
 /// The overlay frame: the reference's stage and camera, its meshes as a grey ghost, every
@@ -121,7 +119,6 @@ render::DrawList overlay_frame(const std::vector<Run>& runs, const Run& referenc
 
   render::OverlayPanel legend;
   legend.title = reference.plan.scene.name;
-  legend.width_px = 300.0f;
   legend.lines.push_back("t = " + printf_number(reference.job->simulation().time(), "%.3f") + " s");
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const NamedColour& colour = kRunPalette[i % kRunPalette.size()];
@@ -136,6 +133,8 @@ render::DrawList overlay_frame(const std::vector<Run>& runs, const Run& referenc
     legend.lines.push_back(std::move(line));
   }
   legend.lines.push_back("grey ghost: " + reference.integrator + " (reference)");
+  const RenderSettings& settings = reference.plan.settings;
+  fit_legend_panel(legend, settings.width, settings.height, settings.font_scale);
   frame.panels.push_back(std::move(legend));
   return frame;
 }
@@ -221,12 +220,16 @@ void draw_grid_frame(const Comparison& comparison, render::Renderer& renderer, r
                      render::Image& frame) {
   const GridLayout& grid = comparison.grid;
   fill_grey(frame, comparison.frame_settings.width, comparison.frame_settings.height, kGapGrey);
-  render::Camera camera;
+  // Every tile with the first run's camera and the same drift scales.
+  std::vector<render::DrawList> lists;
   for (std::size_t i = 0; i < comparison.runs.size(); ++i) {
-    render::DrawList list = comparison.runs[i].job->build();
-    if (i == 0) camera = list.camera;
-    list.camera = camera;
-    fit_panel(list, comparison.runs[i], grid);
+    lists.push_back(comparison.runs[i].job->build());
+    lists.back().camera = lists.front().camera;
+    fit_panel(lists.back(), comparison.runs[i], grid);
+  }
+  share_plot_scales(lists);
+  for (std::size_t i = 0; i < comparison.runs.size(); ++i) {
+    const render::DrawList& list = lists[i];
     renderer.render(list, tile);
     const auto column = static_cast<int>(i % static_cast<std::size_t>(grid.columns));
     const auto row = static_cast<int>(i / static_cast<std::size_t>(grid.columns));

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "app/frame/overlay_fit.hpp"
 #include "engine/integrators.hpp"
 #include "frame_builder_impl.hpp"
 #include "render/overlay_layout.hpp"
@@ -24,50 +25,6 @@ std::string format(const char* pattern, double a, double b = 0.0) {
   char buffer[160];
   std::snprintf(buffer, sizeof buffer, pattern, a, b);
   return buffer;
-}
-
-/// Share of the frame's pixels the panel may cover.
-constexpr double kCoverageBudget = 0.18;
-
-/// The panel's pixel size as ImGui lays it out with the style scaled by font_px / 13 (window
-/// padding 8, item spacing 4, frame padding 4 x 3 at 13 px).
-struct PanelSize {
-  float width = 0.0f;
-  float height = 0.0f;
-};
-
-PanelSize panel_size(const render::OverlayPanel& panel) {
-  const float f = panel.font_px;
-  const float u = f / render::kDefaultFontPx;
-  std::size_t chars = panel.title.size() + 1;
-  for (const std::string& line : panel.lines) chars = std::max(chars, line.size());
-  for (const render::Plot& plot : panel.plots) chars = std::max(chars, plot.name.size() + 12);
-  PanelSize size;
-  size.width = render::overlay_text_width(chars, f) + 16.0f * u;
-  const float line = f + 4.0f * u;
-  size.height = (f + 6.0f * u) + 16.0f * u + static_cast<float>(panel.lines.size()) * line;
-  for (const render::Plot& plot : panel.plots) size.height += line + plot.height_px + 4.0f * u;
-  return size;
-}
-
-/// Applies the size rule above to `panel` (font_px, legend lines and plots already set) for a
-/// `width` x `height` frame; `legend_lines` of panel.lines (from index `first_legend`) may go.
-void fit_to_frame(render::OverlayPanel& panel, std::size_t first_legend, int width, int height) {
-  const double budget = kCoverageBudget * static_cast<double>(width) * height;
-  const auto area = [&] {
-    const PanelSize size = panel_size(panel);
-    return static_cast<double>(std::min(size.width, static_cast<float>(width))) * size.height;
-  };
-  std::size_t legend = panel.lines.size() - first_legend;
-  while (legend > 0 && area() > budget) {
-    panel.lines.erase(panel.lines.begin() + static_cast<long>(first_legend + --legend));
-  }
-  for (render::Plot& plot : panel.plots) {
-    if (area() > budget) plot.height_px = std::min(plot.height_px, 2.0f * panel.font_px);
-  }
-  while (!panel.plots.empty() && area() > budget) panel.plots.pop_back();
-  const float margin = panel.position_px.x();
-  panel.width_px = std::min(panel_size(panel).width, static_cast<float>(width) - 2.0f * margin);
 }
 
 }  // namespace
@@ -140,7 +97,7 @@ void FrameBuilder::Impl::add_overlay(const engine::Simulation& simulation, std::
                         plot_height,
                         render::PlotAxis::kLog};
   panel.plots = {std::move(energy), std::move(momentum)};
-  fit_to_frame(panel, first_legend, settings.width, settings.height);
+  fit_overlay_panel(panel, first_legend, settings.width, settings.height);
   // Labels drawn so far (w, L) get the panel's text size.
   for (render::Label& label : list.labels) {
     if (label.font_px <= 0.0f) label.font_px = panel.font_px;

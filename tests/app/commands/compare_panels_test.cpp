@@ -1,0 +1,88 @@
+// The panels of `tumble compare`: tiles' panels fitted to their tiles with their titles whole,
+// drift plots on one scale, and the legend inside the frame.
+#include "app/commands/compare_panels.hpp"
+
+#include <gtest/gtest.h>
+
+#include "app/frame/overlay_fit.hpp"
+#include "render/overlay_layout.hpp"
+
+namespace tumble::app {
+namespace {
+
+/// A tile's panel as the FrameBuilder lays it out for the tile, before fitting.
+render::OverlayPanel run_panel(int tile_width, int tile_height, std::vector<float> drift) {
+  render::OverlayPanel panel;
+  panel.font_px = render::overlay_font_px(tile_width, tile_height);
+  render::Plot energy{"energy drift", drift, {}, {}, 40.0f, render::PlotAxis::kLog};
+  render::Plot momentum{"|L| drift", drift, {}, {}, 40.0f, render::PlotAxis::kLog};
+  panel.plots = {energy, momentum};
+  return panel;
+}
+
+class TilePanel : public ::testing::TestWithParam<std::pair<int, int>> {};
+
+TEST_P(TilePanel, KeepsItsTitleWholeAndCoversAtMostAFifthOfTheTile) {
+  const auto [width, height] = GetParam();
+  render::OverlayPanel panel = run_panel(width, height, {0.0f, 1e-6f, 2e-6f});
+  const std::string title = "explicit-euler, dt = 0.001 s";
+  fit_tile_panel(panel, title, {"t = 12.345 s"}, width, height);
+  EXPECT_EQ(panel.title, title);
+  EXPECT_GE(panel.font_px, render::kMinFontPx);
+  // The title's text fits inside the panel, and the panel inside the tile.
+  const float title_px = render::overlay_text_width(title.size(), panel.font_px);
+  EXPECT_LE(title_px, panel.width_px);
+  EXPECT_LE(panel.position_px.x() + panel.width_px, static_cast<float>(width));
+  const OverlayPanelSize size = overlay_panel_size(panel);
+  EXPECT_LE(panel.position_px.y() + size.height, static_cast<float>(height));
+  EXPECT_EQ(panel.lines.size(), 1u);  // the time is never dropped
+  if (width >= 320) {
+    EXPECT_LE(size.width * size.height, 0.20f * static_cast<float>(width * height));
+    EXPECT_GE(panel.plots.size(), 1u);
+  } else {
+    // A 240x134 tile: the title and time alone take ~21 %; every plot has gone.
+    EXPECT_TRUE(panel.plots.empty());
+    EXPECT_LE(size.width * size.height, 0.22f * static_cast<float>(width * height));
+  }
+}
+
+// Tiles of a 2x2 grid in 480x270 (GIF), 640x360, 1280x720 and 3840x2160 frames.
+INSTANTIATE_TEST_SUITE_P(TileSizes, TilePanel,
+                         ::testing::Values(std::pair{240, 134}, std::pair{320, 180},
+                                           std::pair{640, 360}, std::pair{1920, 1080}));
+
+TEST(ComparePanels, EveryTileShowsItsDriftOnTheSameScale) {
+  std::vector<render::DrawList> lists(3);
+  const std::vector<std::vector<float>> drifts = {
+      {0.0f, 1e-11f, -3e-11f}, {0.0f, 0.02f, 0.09f}, {0.0f, -4e-5f, 2e-5f}};
+  for (std::size_t i = 0; i < lists.size(); ++i) {
+    lists[i].panels.push_back(run_panel(640, 360, drifts[i]));
+  }
+  share_plot_scales(lists);
+  for (const render::DrawList& list : lists) {
+    for (const render::Plot& plot : list.panels[0].plots) {
+      ASSERT_TRUE(plot.min && plot.max);
+      // |value| range over all runs, the zero floored at log_floor.
+      EXPECT_EQ(*plot.min, plot.log_floor);
+      EXPECT_FLOAT_EQ(*plot.max, 0.09f);
+    }
+  }
+}
+
+TEST(ComparePanels, LegendLinesStayWholeInsideTheFrame) {
+  for (const auto& [width, height] : {std::pair{480, 270}, std::pair{1280, 720}}) {
+    render::OverlayPanel legend;
+    legend.title = "dzhanibekov";
+    legend.lines = {"t = 3.000 s", "orange: explicit-euler, dt = 0.001 s (blew up at t = 2.5 s)",
+                    "blue: rk4, dt = 0.001 s", "grey ghost: reference-adaptive (reference)"};
+    fit_legend_panel(legend, width, height, 1.0);
+    EXPECT_GE(legend.font_px, render::kMinFontPx);
+    EXPECT_LE(legend.position_px.x() + legend.width_px, static_cast<float>(width));
+    for (const std::string& line : legend.lines) {
+      EXPECT_LE(render::overlay_text_width(line.size(), legend.font_px), legend.width_px) << line;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace tumble::app
