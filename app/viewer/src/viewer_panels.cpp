@@ -43,12 +43,13 @@ void body_combo(const char* label, float width, const std::vector<engine::BodyMo
 
 void Panels::draw(Viewer& viewer, const FrameStats& stats, int width, int height) {
   sync(viewer);
-  const float panel_x = static_cast<float>(width) - kPanelWidth - 10.0f;
+  // At most 45 % of a small window's width; collapsible (click its title bar) to free the view.
+  const float panel_width = std::min(kPanelWidth, 0.45f * static_cast<float>(width));
+  const float panel_x = static_cast<float>(width) - panel_width - 10.0f;
   ImGui::SetNextWindowPos(ImVec2(panel_x, 10.0f), ImGuiCond_Always);
-  ImGui::SetNextWindowSize(ImVec2(kPanelWidth, static_cast<float>(height) - 20.0f),
+  ImGui::SetNextWindowSize(ImVec2(panel_width, static_cast<float>(height) - 20.0f),
                            ImGuiCond_Always);
-  ImGui::Begin("tumble view", nullptr,
-               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+  ImGui::Begin("tumble view", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
   simulation_section(viewer, stats);
   if (!viewer.session().empty()) {
     integrator_section(viewer);

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "render/overlay_layout.hpp"
 #include "viewer_panels_common.hpp"
 
 namespace tumble::app::viewer {
@@ -67,28 +68,8 @@ void plot(const std::vector<Series>& series, float height) {
                     origin.y + height - 2.0f - (v - low) / (high - low) * (height - 4.0f));
     };
     const std::size_t n = values.size();
-    if (n <= static_cast<std::size_t>(2 * buckets)) {
-      for (std::size_t i = 0; i < n; ++i) {
-        points.push_back(to_screen(static_cast<double>(i) / static_cast<double>(n - 1), values[i]));
-      }
-    } else {
-      // Each bucket's minimum and maximum, in the order they occur.
-      for (int b = 0; b < buckets; ++b) {
-        const std::size_t first =
-            n * static_cast<std::size_t>(b) / static_cast<std::size_t>(buckets);
-        const std::size_t last =
-            n * static_cast<std::size_t>(b + 1) / static_cast<std::size_t>(buckets);
-        std::size_t lo = first;
-        std::size_t hi = first;
-        for (std::size_t i = first; i < last; ++i) {
-          if (values[i] < values[lo]) lo = i;
-          if (values[i] > values[hi]) hi = i;
-        }
-        for (std::size_t i : {std::min(lo, hi), std::max(lo, hi)}) {
-          points.push_back(
-              to_screen(static_cast<double>(i) / static_cast<double>(n - 1), values[i]));
-        }
-      }
+    for (std::size_t i : render::min_max_decimation(values, buckets)) {
+      points.push_back(to_screen(static_cast<double>(i) / static_cast<double>(n - 1), values[i]));
     }
     draw->AddPolyline(points.data(), static_cast<int>(points.size()), line.colour, ImDrawFlags_None,
                       1.0f);
