@@ -119,5 +119,22 @@ TEST(FrameOverlay, BigTextDropsTheLegendBeforeCoveringTheBody) {
   EXPECT_LE(big.coverage(), 0.20);
 }
 
+TEST(FrameOverlay, FontScaleIsReadAndBoundedInTheScene) {
+  const auto parse = [](const char* text) {
+    return parse_render_settings(nlohmann::json::parse(text), "s.json", {"brick"});
+  };
+  EXPECT_EQ(parse(R"({"font_scale": 1.5})").font_scale, 1.5);
+  EXPECT_EQ(parse("{}").font_scale, 1.0);
+  for (const char* bad : {R"({"font_scale": 20})", R"({"font_scale": 0.1})",
+                          R"({"font_scale": -1})", R"({"font_scale": "big"})"}) {
+    try {
+      parse(bad);
+      ADD_FAILURE() << bad << " accepted";
+    } catch (const std::exception& error) {
+      EXPECT_THAT(error.what(), HasSubstr("render.font_scale")) << bad;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace tumble::app
