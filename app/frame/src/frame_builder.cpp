@@ -140,6 +140,7 @@ FrameBuilder::FrameBuilder(const SceneDescription& description, const CompiledSc
   }
 
   impl.frame_the_run(scene, geometries);
+  impl.settle_supports(scene);
 }
 
 void FrameBuilder::Impl::frame_the_run(const CompiledScene& scene,
@@ -230,6 +231,7 @@ render::DrawList FrameBuilder::build(const engine::Simulation& simulation,
   const std::size_t end = impl.history_end(now);
   for (std::size_t i = 0; i < simulation.bodies().size(); ++i) {
     impl.add_body_items(simulation.bodies()[i], simulation.states()[i], i, end, show, list);
+    impl.add_supports(simulation.bodies()[i], simulation.states()[i], i, show, list);
   }
 
   impl.add_trails(now, end, show, list);
