@@ -15,7 +15,6 @@
 
 #include "app/frame/frame_builder.hpp"
 #include "camera_framing.hpp"
-#include "engine/simulation.hpp"
 
 namespace tumble::app {
 namespace detail {
@@ -53,32 +52,12 @@ struct SupportLook {
 std::vector<Eigen::Vector3f> coil_points(const Eigen::Vector3d& from, const Eigen::Vector3d& to,
                                          double radius);
 
-/// How a body's supports are drawn (frame_forces.cpp).
-struct SupportLook {
-  double coil_radius = 0.0;                             ///< m, of each of its springs' coils
-  Eigen::Vector3d stem_end = Eigen::Vector3d::Zero();  ///< world end of the pivot's stem
-};
-
-/// A coil from `from` to `to` (world) of `radius`: straight leads at both ends and a fixed
-/// number of turns between them, so that it stretches with the distance.
-std::vector<Eigen::Vector3f> coil_points(const Eigen::Vector3d& from, const Eigen::Vector3d& to,
-                                         double radius);
-
-/// Shrinks the arrows of `list` about their tails by one common factor (at most 1) so that
-/// every tip whose tail is in the image projects inside it, `margin` pixels from its edges;
-/// a label anchored at a tip moves with it. Returns the factor.
-double keep_arrows_inside(render::DrawList& list, int width, int height, float margin);
-
-/// The mass-weighted centre of the simulation's bodies (world).
-Eigen::Vector3d mass_centre(const engine::Simulation& simulation);
-
 }  // namespace detail
 
 struct FrameBuilder::Impl {
   RenderSettings settings;
   std::string title;
   std::vector<detail::BodyLook> looks;
-  std::vector<detail::SupportLook> supports;
   std::vector<detail::SupportLook> supports;  ///< per body
   detail::CameraRig rig;
   double ground_height = 0.0;
@@ -110,11 +89,6 @@ struct FrameBuilder::Impl {
   void settle_supports(const CompiledScene& scene);
   /// Body `index`'s springs (coils to their anchors) and pivot (stem, marker and link to the
   /// centre of mass).
-  void add_supports(const engine::BodyModel& body, const engine::BodyState& state,
-                    std::size_t index, const ShowSettings& show, render::DrawList& list) const;
-  /// Coil radii and pivot stems (after frame_the_run: the stem may reach the ground).
-  void settle_supports(const CompiledScene& scene);
-  /// Body `index`'s springs, and its pivot's stem, marker and link to the centre of mass.
   void add_supports(const engine::BodyModel& body, const engine::BodyState& state,
                     std::size_t index, const ShowSettings& show, render::DrawList& list) const;
   void add_body_items(const engine::BodyModel& body, const engine::BodyState& state,
