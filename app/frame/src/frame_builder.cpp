@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <variant>
 
@@ -254,6 +255,18 @@ render::DrawList FrameBuilder::build(const engine::Simulation& simulation,
     impl.add_supports(simulation.bodies()[i], simulation.states()[i], i, show, list);
   }
 
+  // Arrows that would leave the image (under an explicit camera) are shrunk together, and the
+  // overlay says by how much.
+  const double shrink =
+      detail::keep_arrows_inside(list, impl.settings.width, impl.settings.height,
+                                 0.02f * static_cast<float>(impl.settings.height));
+  if (shrink < 1.0 && show.overlay) {
+    char text[64];
+    std::snprintf(text, sizeof text, "arrows drawn at %.2fx to stay in the frame", shrink);
+    list.labels.push_back({text, std::nullopt,
+                           Eigen::Vector2f(10.0f, static_cast<float>(impl.settings.height) - 24.0f),
+                           Rgba{}});
+  }
   impl.add_trails(now, end, show, list);
   if (show.overlay) impl.add_overlay(simulation, end, show, list);
   return list;

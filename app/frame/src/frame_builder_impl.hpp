@@ -52,6 +52,11 @@ struct SupportLook {
 std::vector<Eigen::Vector3f> coil_points(const Eigen::Vector3d& from, const Eigen::Vector3d& to,
                                          double radius);
 
+/// Shrinks the arrows of `list` about their tails by one common factor (at most 1) so that
+/// every tip whose tail is in the image projects inside it, `margin` pixels from its edges; a
+/// label anchored at a tip moves with it (frame_arrow_fit.cpp). Returns the factor.
+double keep_arrows_inside(render::DrawList& list, int width, int height, float margin);
+
 }  // namespace detail
 
 struct FrameBuilder::Impl {
