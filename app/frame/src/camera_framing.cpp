@@ -102,15 +102,24 @@ MotionBound motion_bound(const engine::BodyModel& body, const engine::BodyState&
     }
     out.lowest = std::min(out.lowest, body.pivot.z());
   } else if (spring && spring->stiffness > 0.0) {
-    // The stretch never exceeds sqrt(2E / k) (E: all the energy, gravity's sag added).
-    const double energy =
-        engine::energy(body, state) - acceleration.dot(-state.position) * body.mass;
-    const double sag = body.mass * acceleration.norm() / spring->stiffness;
-    const double stretch = std::sqrt(std::max(0.0, 2.0 * energy / spring->stiffness)) + 2.0 * sag +
-                           (state.position - spring->anchor).norm();
-    const double radius = stretch + spring->attach.norm() + reach;
-    out.spheres.push_back({spring->anchor, radius});
-    out.lowest = std::min(out.lowest, spring->anchor.z() - radius);
+    // With x = p - R a (p the attachment point), the potential is (k/2) |p - q|^2 + m g . (R a)
+    // up to a constant, q = anchor + m g / k the equilibrium of p; m g . (R a) >= -m |g| |a|,
+    // so (k/2) |p - q|^2 never exceeds the energy at the start above that floor (damping only
+    // lowers it). The camera holds that ball of p, the body around it and the anchor.
+    const double k = spring->stiffness;
+    const Eigen::Vector3d q = spring->anchor + body.mass * acceleration / k;
+    const Eigen::Vector3d turned = state.orientation * spring->attach;
+    const Eigen::Vector3d p = engine::rotation_centre(body, state) + turned;
+    const double kinetic = 0.5 * body.mass * state.velocity.squaredNorm() +
+                           0.5 * engine::angular_velocity(body, state).dot(state.angular_momentum);
+    const double budget = kinetic + 0.5 * k * (p - q).squaredNorm() -
+                          body.mass * acceleration.dot(turned) +
+                          body.mass * acceleration.norm() * spring->attach.norm();
+    const double radius =
+        std::sqrt(std::max(0.0, 2.0 * budget / k)) + spring->attach.norm() + reach;
+    out.spheres.push_back({q, radius});
+    out.spheres.push_back({spring->anchor, 0.0});
+    out.lowest = std::min(out.lowest, q.z() - radius);
     out.body = {state.position, reach};
   } else {
     constexpr int kSamples = 48;

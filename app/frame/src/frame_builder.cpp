@@ -19,7 +19,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <variant>
 
 #include "draw_meshes.hpp"
 #include "engine/primitive_meshes.hpp"
@@ -39,9 +41,11 @@ constexpr std::array<Rgba, 6> kBodyPalette = {{{0.86f, 0.55f, 0.26f, 1.0f},
                                                {0.55f, 0.66f, 0.32f, 1.0f},
                                                {0.80f, 0.40f, 0.45f, 1.0f},
                                                {0.55f, 0.55f, 0.58f, 1.0f}}};
-/// Initial |w| drawn as this fraction of the body's size (bounding diameter); |L| likewise.
-constexpr double kOmegaArrowFraction = 0.8;
-constexpr double kMomentumArrowFraction = 1.0;
+/// The longest w arrow of the run (the largest |w| of a free body, a quarter more than the
+/// initial |w| otherwise) drawn this many bounding radii long; |L| likewise. The arrows stay
+/// about as long as the body, so framing the body frames them too and the body stays large.
+constexpr double kOmegaArrowReach = 1.1;
+constexpr double kMomentumArrowReach = 1.2;
 /// Longest semi-axis of the drawn inertia ellipsoid, in bounding radii of the body.
 constexpr double kEllipsoidFraction = 1.15;
 
@@ -79,12 +83,15 @@ BodyLook body_look(const engine::BodyModel& body, const engine::BodyState& state
   look.mesh = renderer.upload(detail::shaded_mesh_data(geometry, 35.0));
   look.colour = colour;
   look.radius = std::max(detail::bounding_radius(geometry), 1e-6);
-  const double size = 2.0 * look.radius;
   const Eigen::Vector3d omega = engine::angular_velocity(body, state);
   const double omega_norm = omega.norm();
-  const double momentum_norm = state.angular_momentum.norm();
-  look.omega_scale = kOmegaArrowFraction * size / (omega_norm > 0.0 ? omega_norm : 1.0);
-  look.momentum_scale = kMomentumArrowFraction * size / (momentum_norm > 0.0 ? momentum_norm : 1.0);
+  const double omega_max = body.torque_free()
+                               ? std::max(omega_norm, detail::largest_free_omega(body, state))
+                               : 1.25 * omega_norm;
+  const double momentum_max = state.angular_momentum.norm() * (body.torque_free() ? 1.0 : 1.25);
+  look.omega_scale = kOmegaArrowReach * look.radius / (omega_max > 0.0 ? omega_max : 1.0);
+  look.momentum_scale =
+      kMomentumArrowReach * look.radius / (momentum_max > 0.0 ? momentum_max : 1.0);
   // Poinsot's ellipsoid through the tip of the w arrow: semi-axes s sqrt(2T / I_i). While it
   // is shown, the w scale s makes its longest semi-axis a little longer than the body.
   const double twice_kinetic = omega.dot(state.angular_momentum);
@@ -140,6 +147,7 @@ FrameBuilder::FrameBuilder(const SceneDescription& description, const CompiledSc
   }
 
   impl.frame_the_run(scene, geometries);
+  impl.settle_supports(scene);
 }
 
 void FrameBuilder::Impl::frame_the_run(const CompiledScene& scene,
@@ -184,9 +192,23 @@ void FrameBuilder::Impl::frame_the_run(const CompiledScene& scene,
     if (i == settings.camera.follow_body) followed = body_bound;
   }
 
-  // The camera, and the ground a hair below the lowest body point.
+  // The camera, and the ground a hair below the lowest body point. A lone free body (no pivot,
+  // no spring) under automatic framing is followed: its ball around the centre of mass is
+  // framed and the target moves with it, so a thrown body stays large instead of the camera
+  // backing off to hold its whole path.
   const detail::Sphere bound = detail::enclosing_sphere(spheres);
-  rig = detail::make_camera_rig(settings.camera, bound, followed,
+  CameraSettings camera = settings.camera;
+  const bool automatic = camera.mode == CameraSettings::Mode::kFixed && !camera.eye &&
+                         !camera.target && !camera.distance;
+  if (automatic && scene.bodies.size() == 1 && !scene.bodies[0].pivoted &&
+      std::none_of(scene.bodies[0].forces.begin(), scene.bodies[0].forces.end(),
+                   [](const engine::ForceTerm& term) {
+                     return std::holds_alternative<engine::Spring>(term);
+                   })) {
+    camera.mode = CameraSettings::Mode::kFollow;
+    camera.follow_body = 0;
+  }
+  rig = detail::make_camera_rig(camera, bound, followed,
                                 static_cast<double>(settings.width) / settings.height);
   if (!std::isfinite(ground_height)) ground_height = bound.center.z() - bound.radius;
   ground_height -= 1e-3 * bound.radius;
@@ -230,8 +252,21 @@ render::DrawList FrameBuilder::build(const engine::Simulation& simulation,
   const std::size_t end = impl.history_end(now);
   for (std::size_t i = 0; i < simulation.bodies().size(); ++i) {
     impl.add_body_items(simulation.bodies()[i], simulation.states()[i], i, end, show, list);
+    impl.add_supports(simulation.bodies()[i], simulation.states()[i], i, show, list);
   }
 
+  // Arrows that would leave the image (under an explicit camera) are shrunk together, and the
+  // overlay says by how much.
+  const double shrink =
+      detail::keep_arrows_inside(list, impl.settings.width, impl.settings.height,
+                                 0.02f * static_cast<float>(impl.settings.height));
+  if (shrink < 1.0 && show.overlay) {
+    char text[64];
+    std::snprintf(text, sizeof text, "arrows drawn at %.2fx to stay in the frame", shrink);
+    list.labels.push_back({text, std::nullopt,
+                           Eigen::Vector2f(10.0f, static_cast<float>(impl.settings.height) - 24.0f),
+                           Rgba{}});
+  }
   impl.add_trails(now, end, show, list);
   if (show.overlay) impl.add_overlay(simulation, end, show, list);
   return list;

@@ -3,7 +3,8 @@
 // construction (how each body is drawn, the camera rig) and the history observe() records.
 // Its members are defined by concern: frame_builder.cpp (construction, framing, build),
 // frame_body_items.cpp (each body's mesh, arrows and axes), frame_paths.cpp (polhode,
-// herpolhode, trails), frame_overlay.cpp (the overlay panel and its drift plots).
+// herpolhode, trails), frame_overlay.cpp (the overlay panel and its drift plots),
+// frame_forces.cpp (springs and pivots).
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -39,12 +40,30 @@ struct BodyLook {
   }
 };
 
+/// How one body's supports are drawn: its springs' coil radius, and the far end of its pivot's
+/// stem (the pivot is fixed in the world, so is the stem).
+struct SupportLook {
+  double coil_radius = 0.0;                            ///< m
+  Eigen::Vector3d stem_end = Eigen::Vector3d::Zero();  ///< world, m
+};
+
+/// The points of a coil from `from` to `to` (world, m) of `radius`: straight leads at both
+/// ends and a fixed number of turns between them, so that it stretches with the distance.
+std::vector<Eigen::Vector3f> coil_points(const Eigen::Vector3d& from, const Eigen::Vector3d& to,
+                                         double radius);
+
+/// Shrinks the arrows of `list` about their tails by one common factor (at most 1) so that
+/// every tip whose tail is in the image projects inside it, `margin` pixels from its edges; a
+/// label anchored at a tip moves with it (frame_arrow_fit.cpp). Returns the factor.
+double keep_arrows_inside(render::DrawList& list, int width, int height, float margin);
+
 }  // namespace detail
 
 struct FrameBuilder::Impl {
   RenderSettings settings;
   std::string title;
   std::vector<detail::BodyLook> looks;
+  std::vector<detail::SupportLook> supports;  ///< per body
   detail::CameraRig rig;
   double ground_height = 0.0;
   InvariantDrift drift;
@@ -71,6 +90,12 @@ struct FrameBuilder::Impl {
   /// Appends w (world and body) and the trail points at the simulation's time to the paths.
   void record_paths(const engine::Simulation& simulation);
 
+  /// Settles `supports` from the scene (after frame_the_run(), which sets the ground height).
+  void settle_supports(const CompiledScene& scene);
+  /// Body `index`'s springs (coils to their anchors) and pivot (stem, marker and link to the
+  /// centre of mass).
+  void add_supports(const engine::BodyModel& body, const engine::BodyState& state,
+                    std::size_t index, const ShowSettings& show, render::DrawList& list) const;
   void add_body_items(const engine::BodyModel& body, const engine::BodyState& state,
                       std::size_t index, std::size_t end, const ShowSettings& show,
                       render::DrawList& list) const;
