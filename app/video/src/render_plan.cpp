@@ -59,12 +59,12 @@ RenderSettings render_settings(const RenderOptions& options, const SceneDescript
   if (options.time_scale)
     settings.time_scale = positive_option(*options.time_scale, "--time-scale");
   if (options.antialiasing) {
-    if (*options.antialiasing < 1 || *options.antialiasing > kMaxAntialiasing) {
-      throw InputError("--aa: expected samples per pixel from 1 to " +
-                       std::to_string(kMaxAntialiasing) + ", got " +
-                       std::to_string(*options.antialiasing));
+    const std::optional<Antialiasing> parsed = antialiasing_from_text(*options.antialiasing);
+    if (!parsed) {
+      throw InputError(std::string("--aa: ") + kAntialiasingExpected + ", got " +
+                       *options.antialiasing);
     }
-    settings.antialiasing = *options.antialiasing;
+    settings.antialiasing = *parsed;
   }
   if (options.no_overlay) settings.show.overlay = false;
   return settings;
