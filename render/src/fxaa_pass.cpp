@@ -13,8 +13,8 @@ FxaaPass::FxaaPass(int width, int height)
       empty_(GlVertexArray::create()),
       blocks_(GlTexture::create()),
       blocks_fbo_(GlFramebuffer::create()),
-      blocks_width_((width + 3) / 4),
-      blocks_height_((height + 3) / 4) {
+      blocks_width_((width + 7) / 8),
+      blocks_height_((height + 7) / 8) {
   glBindTexture(GL_TEXTURE_2D, blocks_.get());
   glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, blocks_width_, blocks_height_, 0, GL_RED, GL_UNSIGNED_BYTE,
                nullptr);

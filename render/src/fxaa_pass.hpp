@@ -3,8 +3,9 @@
 // (see fxaa_shaders.hpp for the filter), before the overlay is drawn so text stays crisp.
 //
 // Three steps a frame: copy the scene into the output (a same-format blit, which llvmpipe does
-// as a memory copy), mark the 4x4-pixel blocks that hold an edge (a 1/16-size pass), then run
-// the filter over the full image, where fragments of unmarked blocks are discarded at once.
+// as a memory copy), mark the 8x8-pixel blocks that hold an edge (a 1/64-size pass), then run
+// the filter as one 8x8 point per marked block (flat blocks are not covered at all: llvmpipe
+// would run a discarding fragment shader in full).
 
 #include "gl_handle.hpp"
 #include "gl_program.hpp"
@@ -29,7 +30,7 @@ class FxaaPass {
   GlProgram blocks_program_;
   GlProgram filter_program_;
   GlVertexArray empty_;  // core profile: a draw needs a vertex array, even with no attributes
-  GlTexture blocks_;     // one texel per 4x4 pixels: 1 near an edge, else 0
+  GlTexture blocks_;     // one texel per 8x8 pixels: 1 near an edge, else 0
   GlFramebuffer blocks_fbo_;
   int blocks_width_;
   int blocks_height_;

@@ -1,15 +1,16 @@
 #pragma once
-// GLSL 3.30 source of the post-process anti-aliasing filter (fxaa_pass.cpp).
+// GLSL 4.00 sources (textureGather) of the post-process anti-aliasing filter (fxaa_pass.cpp).
 //
-// The idea is Lottes' "FXAA" (NVIDIA white paper, 2009; the low-cost variant of FXAA 3): find
-// edges from the luma of a pixel and its four diagonal neighbours, and where the local contrast
+// The idea is Lottes' "FXAA" (NVIDIA white paper, 2009; the low-cost variant of FXAA 3, with
+// green standing in for luma as FXAA 3.11 allows): find edges from the luma of a pixel and its
+// neighbours (here the four sides and two diagonals, from two gathers), and where the contrast
 // is high, average the image along the edge's direction (perpendicular to the luma gradient).
 // Two taps a third of the way along the edge give a narrow blend (A); two more at half the
 // span widen it (B), and B is kept only when its luma stays within the neighbourhood's range
 // (otherwise it has crossed onto another surface). Pixels below the contrast threshold are
 // discarded: the output already holds the scene there (a plain copy, which llvmpipe does as a
-// memcpy), so flat regions and the gentle background gradient stay bit for bit, and llvmpipe
-// skips the blend entirely for 4x4-pixel blocks without an edge, which are most of a frame.
+// memcpy), so flat regions and the gentle background gradient stay bit for bit. The filter only
+// runs on 8x8-pixel blocks found to hold an edge (kEdgeBlocksFragment, kEdgeBlockPoints).
 
 namespace tumble::render::detail::shaders {
 
@@ -20,19 +21,19 @@ void main() {
   gl_Position = vec4(p, 0.0, 1.0);
 })";
 
-/// Edge blocks: one fragment per 4x4-pixel block of the image writes 1 when the block or its
-/// one-pixel rim (6x6 pixels, nine gathers of green) has contrast above the filter's absolute
+/// Edge blocks: one fragment per 8x8-pixel block of the image writes 1 when the block or its
+/// one-pixel rim (10x10 pixels, 25 gathers of green) has contrast above the filter's absolute
 /// floor, else 0.
 inline constexpr const char* kEdgeBlocksFragment = R"(#version 400 core
 uniform sampler2D scene;
 uniform vec2 texel;
 out vec4 edge;
 void main() {
-  vec2 corner = (floor(gl_FragCoord.xy) * 4.0) * texel;  // lower-left corner of the block
+  vec2 corner = (floor(gl_FragCoord.xy) * 8.0) * texel;  // lower-left corner of the block
   float lo = 1.0;
   float hi = 0.0;
-  for (int j = 0; j < 3; ++j) {
-    for (int i = 0; i < 3; ++i) {
+  for (int j = 0; j < 5; ++j) {
+    for (int i = 0; i < 5; ++i) {
       vec4 g = textureGather(scene, corner + vec2(2 * i, 2 * j) * texel, 1);
       lo = min(lo, min(min(g.x, g.y), min(g.z, g.w)));
       hi = max(hi, max(max(g.x, g.y), max(g.z, g.w)));
@@ -41,7 +42,7 @@ void main() {
   edge = vec4(hi - lo >= 0.0312 ? 1.0 : 0.0);
 })";
 
-/// The filter runs only on edge blocks: one 4x4-pixel point per block, moved outside the clip
+/// The filter runs only on edge blocks: one 8x8-pixel point per block, moved outside the clip
 /// volume (culled) when the block is flat. (llvmpipe runs a fragment shader in full for every
 /// covered pixel, discarded or not, so the work is saved by not covering the flat ones.)
 inline constexpr const char* kEdgeBlockPoints = R"(#version 400 core
@@ -50,10 +51,10 @@ uniform vec2 texel;        // 1 / image size
 void main() {
   int columns = textureSize(blocks, 0).x;
   ivec2 block = ivec2(gl_VertexID % columns, gl_VertexID / columns);
-  vec2 centre = (vec2(block) * 4.0 + 2.0) * texel * 2.0 - 1.0;
+  vec2 centre = (vec2(block) * 8.0 + 4.0) * texel * 2.0 - 1.0;
   bool edge = texelFetch(blocks, block, 0).r > 0.0;
   gl_Position = edge ? vec4(centre, 0.0, 1.0) : vec4(-2.0, -2.0, 0.0, 1.0);
-  gl_PointSize = 4.0;
+  gl_PointSize = 8.0;
 })";
 
 inline constexpr const char* kFxaaFragment = R"(#version 400 core
