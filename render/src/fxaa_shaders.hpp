@@ -39,7 +39,9 @@ void main() {
       hi = max(hi, max(max(g.x, g.y), max(g.z, g.w)));
     }
   }
-  edge = vec4(hi - lo >= 0.0312 ? 1.0 : 0.0);
+  // No pixel of the block can pass the filter's test when the range is below both the floor
+  // and the relative threshold of the block's darkest pixel (no neighbourhood is darker).
+  edge = vec4(hi - lo >= max(0.0312, 0.125 * lo) ? 1.0 : 0.0);
 })";
 
 /// The filter runs only on edge blocks: one 8x8-pixel point per block, moved outside the clip
