@@ -19,8 +19,8 @@ using namespace tumble::render;
 constexpr int kWidth = 1280;
 constexpr int kHeight = 720;
 
-/// A twisted box-section ring (smooth normals of a torus of square-ish cross-section are not
-/// needed): a 100 x 100 torus, 20k triangles, like the demo's meshes in size.
+/// A torus with smooth normals, rings x sides x 2 triangles (100 x 100: 20k, like the demo's
+/// meshes).
 MeshData ring(int rings = 100, int sides = 100) {
   MeshData mesh;
   const float two_pi = 2.0f * std::numbers::pi_v<float>;

@@ -36,7 +36,7 @@ namespace tumble::render {
 /// A post-process anti-aliasing filter.
 enum class AntialiasingFilter {
   none,  ///< aliased (or multisampled, with RendererOptions::samples)
-  fxaa,  ///< edge-directed blend after Lottes' FXAA (2009): smooth edges at ~1.1x the time
+  fxaa,  ///< edge-directed blend after Lottes' FXAA (2009): 1.1-1.4x the time of aliased
 };
 
 /// Image size and anti-aliasing of a Renderer.
