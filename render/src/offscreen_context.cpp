@@ -32,7 +32,7 @@ struct Framebuffer {
 };
 
 /// Attaches a single-sampled RGBA8 texture, bilinear and clamped to the edge, as the bound
-/// FBO's colour (rendering to it directly: the post-process needs no copy).
+/// FBO's colour (the scene renders into it and the post-process samples it).
 detail::GlTexture attach_colour_texture(int width, int height) {
   detail::GlTexture texture = detail::GlTexture::create();
   glBindTexture(GL_TEXTURE_2D, texture.get());

@@ -5,9 +5,10 @@
 // - One OSMesa core-profile context per Renderer, rendering into its own FBO (multisampled when
 //   asked; the sample count is clamped to what the driver accepts, never a black frame).
 // - Anti-aliasing is either multisampling (`samples`) or a post-process filter (`filter`, FXAA
-//   after Lottes 2009): the scene draws into a colour texture, the filter writes it into a second
-//   FBO with one full-screen triangle (no copy), and the overlay is drawn on the filtered image,
-//   so text is never blurred. On llvmpipe the filter costs a fraction of 4x multisampling.
+//   after Lottes 2009): the scene draws into a colour texture, a same-format blit copies it into
+//   a second FBO, a 1/64-size pass marks the 8x8 blocks with contrast and the filter runs only on
+//   those, so flat pixels stay bit for bit; the overlay is drawn on the filtered image, so text
+//   is never blurred. On llvmpipe the filter costs a fraction of 4x multisampling.
 // - Meshes are uploaded once (upload() -> MeshId); a frame only sets uniforms and issues draws,
 //   except polylines and points, which are streamed because they change every frame.
 // - Pass order: vertical-gradient background (a full-screen triangle, so no clear colour to keep
