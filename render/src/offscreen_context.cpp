@@ -22,25 +22,48 @@ struct OsmesaContextDeleter {
 };
 using OsmesaContextPtr = std::unique_ptr<osmesa_context, OsmesaContextDeleter>;
 
-/// A framebuffer object with a colour and (optionally) a depth renderbuffer.
+/// A framebuffer object with a colour renderbuffer or texture and (optionally) a depth
+/// renderbuffer.
 struct Framebuffer {
   detail::GlFramebuffer fbo;
   detail::GlRenderbuffer colour;
+  detail::GlTexture texture;  // instead of `colour` when a post-process samples the image
   detail::GlRenderbuffer depth;
 };
 
+/// Attaches a single-sampled RGBA8 texture, bilinear and clamped to the edge, as the bound
+/// FBO's colour (the scene renders into it and the post-process samples it).
+detail::GlTexture attach_colour_texture(int width, int height) {
+  detail::GlTexture texture = detail::GlTexture::create();
+  glBindTexture(GL_TEXTURE_2D, texture.get());
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture.get(), 0);
+  return texture;
+}
+
 /// Creates colour + depth renderbuffers attached to a new FBO; nothing (every object deleted
-/// again) when it is incomplete.
-std::optional<Framebuffer> make_framebuffer(int width, int height, int samples, bool with_depth) {
+/// again) when it is incomplete. `as_texture` (single-sampled only) makes the colour a texture.
+std::optional<Framebuffer> make_framebuffer(int width, int height, int samples, bool with_depth,
+                                            bool as_texture = false) {
   Framebuffer made;
   made.fbo = detail::GlFramebuffer::create();
   glBindFramebuffer(GL_FRAMEBUFFER, made.fbo.get());
-  made.colour = detail::GlRenderbuffer::create();
-  glBindRenderbuffer(GL_RENDERBUFFER, made.colour.get());
-  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples > 1 ? samples : 0, GL_RGBA8, width,
-                                   height);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
-                            made.colour.get());
+  if (as_texture) {
+    made.texture = attach_colour_texture(width, height);
+  } else {
+    made.colour = detail::GlRenderbuffer::create();
+    glBindRenderbuffer(GL_RENDERBUFFER, made.colour.get());
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples > 1 ? samples : 0, GL_RGBA8, width,
+                                     height);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                              made.colour.get());
+  }
   if (with_depth) {
     made.depth = detail::GlRenderbuffer::create();
     glBindRenderbuffer(GL_RENDERBUFFER, made.depth.get());
@@ -66,10 +89,16 @@ struct OffscreenContext::Impl {
   std::uint8_t dummy_buffer[4 * 4 * 4] = {};  // the default framebuffer is never drawn to
   Framebuffer draw;     // what the passes render into (multisampled when samples > 1)
   Framebuffer resolve;  // single-sampled copy read back when drawing is multisampled
+  Framebuffer output;   // the post-process's result (draw's colour is then a texture)
   std::vector<std::uint8_t> bottom_up;  // glReadPixels rows, flipped into the Image
+
+  /// The FBO draws go to for `target`.
+  GLuint fbo(Target target) const {
+    return target == Target::output && output.fbo ? output.fbo.get() : draw.fbo.get();
+  }
 };
 
-OffscreenContext::OffscreenContext(int width, int height, int samples)
+OffscreenContext::OffscreenContext(int width, int height, int samples, bool post_process)
     : impl_(std::make_unique<Impl>()), width_(width), height_(height) {
   if (width <= 0 || height <= 0 || width > 16384 || height > 16384) {
     throw std::invalid_argument("offscreen context: invalid image size " + std::to_string(width) +
@@ -114,9 +143,13 @@ OffscreenContext::OffscreenContext(int width, int height, int samples)
     std::optional<Framebuffer> resolve = make_framebuffer(width, height, 1, /*with_depth=*/false);
     if (!resolve) throw std::runtime_error("offscreen context: resolve framebuffer is incomplete");
     impl_->resolve = std::move(*resolve);
-  } else if (!(draw = make_framebuffer(width, height, 1, /*with_depth=*/true))) {
+  } else if (!(draw = make_framebuffer(width, height, 1, /*with_depth=*/true, post_process))) {
     throw std::runtime_error("offscreen context: framebuffer " + std::to_string(width) + "x" +
                              std::to_string(height) + " is incomplete");
+  } else if (post_process) {
+    std::optional<Framebuffer> output = make_framebuffer(width, height, 1, /*with_depth=*/false);
+    if (!output) throw std::runtime_error("offscreen context: output framebuffer is incomplete");
+    impl_->output = std::move(*output);
   }
   impl_->draw = std::move(*draw);
   samples_ = wanted;
@@ -135,14 +168,31 @@ void OffscreenContext::make_current() {
   if (OSMesaGetCurrentContext() != impl_->context.get()) {
     OSMesaMakeCurrent(impl_->context.get(), impl_->dummy_buffer, GL_UNSIGNED_BYTE, 4, 4);
   }
-  glBindFramebuffer(GL_FRAMEBUFFER, impl_->draw.fbo.get());
+  glBindFramebuffer(GL_FRAMEBUFFER, impl_->fbo(target_));
   glViewport(0, 0, width_, height_);
+}
+
+unsigned int OffscreenContext::scene_texture() const {
+  return impl_->draw.texture.get();
+}
+
+bool OffscreenContext::has_post_process() const {
+  return static_cast<bool>(impl_->output.fbo);
+}
+
+void OffscreenContext::copy_scene_to_output() {
+  if (!impl_->output.fbo) return;
+  make_current();
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, impl_->draw.fbo.get());
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, impl_->output.fbo.get());
+  glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, impl_->fbo(target_));
 }
 
 void OffscreenContext::read_pixels(Image& out) {
   make_current();
   // Resolve the multisampled buffer into the single-sampled one.
-  GLuint read_fbo = impl_->draw.fbo.get();
+  GLuint read_fbo = impl_->fbo(target_);
   if (impl_->resolve.fbo) {
     glBindFramebuffer(GL_READ_FRAMEBUFFER, impl_->draw.fbo.get());
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, impl_->resolve.fbo.get());
@@ -164,7 +214,7 @@ void OffscreenContext::read_pixels(Image& out) {
     std::memcpy(out.rgba.data() + row * static_cast<std::size_t>(y),
                 impl_->bottom_up.data() + row * static_cast<std::size_t>(height_ - 1 - y), row);
   }
-  glBindFramebuffer(GL_FRAMEBUFFER, impl_->draw.fbo.get());
+  glBindFramebuffer(GL_FRAMEBUFFER, impl_->fbo(target_));
 }
 
 }  // namespace tumble::render

@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "fxaa_pass.hpp"
 #include "gpu_mesh.hpp"
 #include "overlay_pass.hpp"
 #include "render/offscreen_context.hpp"
@@ -13,23 +14,29 @@ namespace tumble::render {
 
 struct Renderer::Impl {
   explicit Impl(const RendererOptions& options)
-      : context(options.width, options.height, options.samples) {}
+      : context(
+            options.width, options.height, options.samples,
+            /*post_process=*/options.filter != AntialiasingFilter::none && options.samples <= 1) {}
 
   OffscreenContext context;
   std::vector<detail::GpuMesh> meshes;
   std::unique_ptr<detail::ScenePasses> scene;
+  std::unique_ptr<detail::FxaaPass> fxaa;        // when the context has a post-process
   std::unique_ptr<detail::OverlayPass> overlay;  // created by the first frame with text
 };
 
 Renderer::Renderer(const RendererOptions& options) : impl_(std::make_unique<Impl>(options)) {
   impl_->context.make_current();
   impl_->scene = std::make_unique<detail::ScenePasses>();
+  if (impl_->context.has_post_process())
+    impl_->fxaa = std::make_unique<detail::FxaaPass>(options.width, options.height);
 }
 
 Renderer::~Renderer() {
   // GL objects go before the context that owns them.
   impl_->context.make_current();
   impl_->overlay.reset();
+  impl_->fxaa.reset();
   impl_->scene.reset();
   impl_->meshes.clear();
 }
@@ -63,8 +70,10 @@ void Renderer::render(const DrawList& frame, Image& out) {
 
 void Renderer::render(const DrawList& frame, Image& out, const ExtraPass& extra) {
   OffscreenContext& context = impl_->context;
+  context.set_target(OffscreenContext::Target::scene);
   context.make_current();
   impl_->scene->draw(frame, impl_->meshes, context);
+  if (impl_->fxaa) impl_->fxaa->apply(context);  // later draws and the read-back: the output
   if (frame.has_overlays()) {
     if (!impl_->overlay) impl_->overlay = std::make_unique<detail::OverlayPass>();
     impl_->overlay->draw(frame, context.width(), context.height());
@@ -90,6 +99,9 @@ int Renderer::height() const {
 }
 int Renderer::samples() const {
   return impl_->context.samples();
+}
+AntialiasingFilter Renderer::filter() const {
+  return impl_->fxaa ? AntialiasingFilter::fxaa : AntialiasingFilter::none;
 }
 
 }  // namespace tumble::render

@@ -111,10 +111,11 @@ CLI::App& add_render_command(CLI::App& cli, RenderOptions& options) {
           "--dt", [&](double value) { options.dt = value; }, "Simulation time step H in seconds")
       ->type_name("H");
   render
-      .add_option_function<int>(
-          "--aa", [&](int value) { options.antialiasing = value; },
-          "Anti-aliasing samples per pixel N (1 off, 4 max on llvmpipe, about 3x slower)")
-      ->type_name("N");
+      .add_option_function<std::string>(
+          "--aa", [&](const std::string& value) { options.antialiasing = value; },
+          "Anti-aliasing: fxaa (default; a post-process filter, ~1.15x the time), off, or "
+          "multisampling with N samples per pixel (2-16, 4 max on llvmpipe, ~2x the time)")
+      ->type_name("fxaa|off|N");
   render.add_flag("--no-overlay", options.no_overlay,
                   "No text or plots: title, integrator, time and drift plots are left out");
   return render;

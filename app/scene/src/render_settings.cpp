@@ -109,7 +109,39 @@ ShowSettings parse_show(const Field& field, const std::vector<std::string>& body
   return show;
 }
 
+/// `render.antialiasing`: "off", "fxaa" or samples per pixel (1: off).
+Antialiasing parse_antialiasing(const Field& field) {
+  if (field.value().is_string()) {
+    const std::string text = field.string();
+    if (text == "off" || text == "fxaa") return *antialiasing_from_text(text);
+  } else if (field.value().is_number_integer() || field.value().is_number_unsigned()) {
+    const long long samples = field.value().get<long long>();
+    if (samples >= 1 && samples <= kMaxAntialiasing) {
+      return antialiasing_samples(static_cast<int>(samples));
+    }
+  }
+  field.fail(std::string(kAntialiasingExpected) + ", got " + field.value().dump());
+}
+
 }  // namespace
+
+Antialiasing antialiasing_samples(int samples) {
+  return samples <= 1 ? Antialiasing{Antialiasing::Mode::kOff, 1}
+                      : Antialiasing{Antialiasing::Mode::kMultisample, samples};
+}
+
+std::optional<Antialiasing> antialiasing_from_text(const std::string& text) {
+  if (text == "off") return Antialiasing{Antialiasing::Mode::kOff, 1};
+  if (text == "fxaa") return Antialiasing{};
+  int samples = 0;
+  const char* end = text.data() + text.size();
+  const auto [stop, error] = std::from_chars(text.data(), end, samples);
+  if (text.empty() || error != std::errc() || stop != end || samples < 1 ||
+      samples > kMaxAntialiasing) {
+    return std::nullopt;
+  }
+  return antialiasing_samples(samples);
+}
 
 RenderSettings parse_render_settings(const nlohmann::json& render, const std::string& source,
                                      const std::vector<std::string>& body_names) {
@@ -141,8 +173,8 @@ RenderSettings parse_render_settings(const nlohmann::json& render, const std::st
     }
   }
   if (auto scale = top.find("time_scale")) settings.time_scale = scale->positive();
-  if (auto samples = top.find("antialiasing"))
-    settings.antialiasing = samples->integer(1, kMaxAntialiasing);
+  if (auto antialiasing = top.find("antialiasing"))
+    settings.antialiasing = parse_antialiasing(*antialiasing);
 
   if (auto scale = top.find("font_scale")) {
     settings.font_scale = scale->positive();

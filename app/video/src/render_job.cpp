@@ -10,6 +10,14 @@
 
 namespace tumble::app {
 
+render::RendererOptions renderer_options(const Antialiasing& antialiasing, int width, int height) {
+  render::RendererOptions options{width, height, antialiasing.samples};
+  if (antialiasing.mode == Antialiasing::Mode::kFxaa) {
+    options.filter = render::AntialiasingFilter::fxaa;
+  }
+  return options;
+}
+
 using engine::InputError;
 
 struct RenderJob::Impl {
@@ -30,8 +38,8 @@ struct RenderJob::Impl {
         simulation(make_simulation(scene, compiled)),
         own_renderer(shared != nullptr
                          ? nullptr
-                         : std::make_unique<render::Renderer>(render::RendererOptions{
-                               settings.width, settings.height, settings.antialiasing})),
+                         : std::make_unique<render::Renderer>(renderer_options(
+                               settings.antialiasing, settings.width, settings.height))),
         renderer(shared != nullptr ? *shared : *own_renderer),
         builder(scene, compiled, settings, renderer) {}
 

@@ -67,12 +67,12 @@ RenderSettings render_settings(const RenderOptions& options, const SceneDescript
     settings.font_scale = *options.font_scale;
   }
   if (options.antialiasing) {
-    if (*options.antialiasing < 1 || *options.antialiasing > kMaxAntialiasing) {
-      throw InputError("--aa: expected samples per pixel from 1 to " +
-                       std::to_string(kMaxAntialiasing) + ", got " +
-                       std::to_string(*options.antialiasing));
+    const std::optional<Antialiasing> parsed = antialiasing_from_text(*options.antialiasing);
+    if (!parsed) {
+      throw InputError(std::string("--aa: ") + kAntialiasingExpected + ", got " +
+                       *options.antialiasing);
     }
-    settings.antialiasing = *options.antialiasing;
+    settings.antialiasing = *parsed;
   }
   if (options.no_overlay) settings.show.overlay = false;
   return settings;

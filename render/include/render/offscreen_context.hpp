@@ -1,6 +1,7 @@
 #pragma once
 // An OSMesa (llvmpipe) OpenGL core-profile context rendering into a framebuffer object, with
-// optional multisampling and top-down RGBA8 readback. No display or GPU needed.
+// optional multisampling or a colour texture for a post-process, and top-down RGBA8 readback.
+// No display or GPU needed.
 
 #include <memory>
 
@@ -16,15 +17,35 @@ class OffscreenContext {
   /// Throws std::invalid_argument for a size outside 1..16384 (the caller validates sizes) and
   /// std::runtime_error with one line when the context or FBO can't be created. The GL objects
   /// it owns are deleted with it, also when construction fails midway.
-  OffscreenContext(int width, int height, int samples);
+  ///
+  /// With `post_process` (and no multisampling after clamping) the scene FBO's colour is a
+  /// texture (scene_texture()) and a second, depth-less FBO of the same size (the output)
+  /// receives the post-processed image; set_target() chooses which one draws go to.
+  OffscreenContext(int width, int height, int samples, bool post_process = false);
   ~OffscreenContext();
   OffscreenContext(const OffscreenContext&) = delete;
   OffscreenContext& operator=(const OffscreenContext&) = delete;
 
-  /// Makes the context current on the calling thread and binds the draw FBO.
+  /// Which framebuffer make_current() binds and read_pixels() reads.
+  enum class Target {
+    scene,   ///< the FBO the scene passes draw into (with depth)
+    output,  ///< the post-process's output (the scene FBO when there is no post-process)
+  };
+
+  /// Makes the context current on the calling thread and binds the target FBO.
   void make_current();
-  /// Resolves multisampling (if any) and reads the pixels back, row 0 at the top.
+  /// Sets the target of later make_current() and read_pixels() calls (scene at creation).
+  void set_target(Target target) { target_ = target; }
+  /// Resolves multisampling (if any) and reads the target's pixels back, row 0 at the top.
   void read_pixels(Image& out);
+
+  /// The scene FBO's colour texture (0 without a post-process).
+  unsigned int scene_texture() const;
+  /// True when there is a separate output FBO for a post-process.
+  bool has_post_process() const;
+  /// Copies the scene FBO's colour into the output FBO (same size and format: a plain copy);
+  /// leaves the target's FBO bound. Nothing without a post-process.
+  void copy_scene_to_output();
 
   int width() const { return width_; }
   int height() const { return height_; }
@@ -37,6 +58,7 @@ class OffscreenContext {
   int width_;
   int height_;
   int samples_ = 1;
+  Target target_ = Target::scene;
 };
 
 }  // namespace tumble::render

@@ -4,6 +4,11 @@
 // Design note
 // - One OSMesa core-profile context per Renderer, rendering into its own FBO (multisampled when
 //   asked; the sample count is clamped to what the driver accepts, never a black frame).
+// - Anti-aliasing is either multisampling (`samples`) or a post-process filter (`filter`, FXAA
+//   after Lottes 2009): the scene draws into a colour texture, a same-format blit copies it into
+//   a second FBO, a 1/64-size pass marks the 8x8 blocks with contrast and the filter runs only on
+//   those, so flat pixels stay bit for bit; the overlay is drawn on the filtered image, so text
+//   is never blurred. On llvmpipe the filter costs a fraction of 4x multisampling.
 // - Meshes are uploaded once (upload() -> MeshId); a frame only sets uniforms and issues draws,
 //   except polylines and points, which are streamed because they change every frame.
 // - Pass order: vertical-gradient background (a full-screen triangle, so no clear colour to keep
@@ -29,6 +34,12 @@
 
 namespace tumble::render {
 
+/// A post-process anti-aliasing filter.
+enum class AntialiasingFilter {
+  none,  ///< aliased (or multisampled, with RendererOptions::samples)
+  fxaa,  ///< edge-directed blend after Lottes' FXAA (2009): 1.1-1.4x the time of aliased
+};
+
 /// Image size and anti-aliasing of a Renderer.
 struct RendererOptions {
   int width = 1280;
@@ -37,6 +48,10 @@ struct RendererOptions {
   /// driver supports (4 on llvmpipe); 4x costs about 3x the time of 1x per frame on llvmpipe,
   /// mostly in the resolve, so it suits final renders rather than previews.
   int samples = 1;
+  /// Post-process anti-aliasing of the 3D scene (not the overlay). Ignored when multisampling
+  /// is in use (samples > 1 after clamping). Off by default here, so golden images stay
+  /// aliased; `tumble render` and `tumble compare` choose fxaa unless told otherwise.
+  AntialiasingFilter filter = AntialiasingFilter::none;
 };
 
 /// Drawing a caller adds on top of a frame (the viewer's interactive ImGui panels).
@@ -85,6 +100,8 @@ class Renderer {
   int height() const;
   /// Samples per pixel actually used.
   int samples() const;
+  /// The post-process filter actually used (none when multisampling).
+  AntialiasingFilter filter() const;
 
  private:
   struct Impl;

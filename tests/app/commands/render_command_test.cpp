@@ -227,7 +227,12 @@ TEST_F(RenderCommand, OptionErrorsNameTheOption) {
       {"--fps 0", "--fps: expected a positive finite number, got 0"},
       {"--fps 241", "--fps: expected at most 240 frames per second, got 241"},
       {"--time-scale -1", "--time-scale: expected a positive finite number, got -1"},
-      {"--aa 0", "--aa: expected samples per pixel from 1 to 16, got 0"},
+      {"--aa 0",
+       "--aa: expected off, fxaa or multisampling samples per pixel from 2 to 16 (1: off), got "
+       "0"},
+      {"--aa 17", "--aa: expected off, fxaa or multisampling samples per pixel"},
+      {"--aa smaa", "got smaa"},
+      {"--aa 4x", "got 4x"},
       {"--integrator nope", "--integrator: unknown integrator \"nope\"; expected one of: "},
       {"--dt 1", "--dt: expected a step no longer than the duration"},
   };

@@ -32,7 +32,7 @@ TEST(RenderSettings, EmptyObjectGivesTheDefaults) {
   EXPECT_EQ(s.height, 720);
   EXPECT_EQ(s.fps, 30.0);
   EXPECT_EQ(s.time_scale, 1.0);
-  EXPECT_EQ(s.antialiasing, 1);
+  EXPECT_EQ(s.antialiasing, (Antialiasing{Antialiasing::Mode::kFxaa, 1}));  // FXAA by default
   EXPECT_EQ(s.camera.mode, CameraSettings::Mode::kFixed);
   EXPECT_FALSE(s.camera.eye.has_value());
   EXPECT_FALSE(s.camera.target.has_value());
@@ -61,7 +61,7 @@ TEST(RenderSettings, ReadsEveryKey) {
   EXPECT_EQ(s.height, 360);
   EXPECT_EQ(s.fps, 60.0);
   EXPECT_EQ(s.time_scale, 0.25);
-  EXPECT_EQ(s.antialiasing, 4);
+  EXPECT_EQ(s.antialiasing, (Antialiasing{Antialiasing::Mode::kMultisample, 4}));
   EXPECT_EQ(s.camera.mode, CameraSettings::Mode::kFollow);
   EXPECT_EQ(*s.camera.eye, Eigen::Vector3d(1, 2, 3));
   EXPECT_EQ(*s.camera.target, Eigen::Vector3d(0, 0, 0.5));
@@ -134,9 +134,15 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{R"({"fps": "30"})", "render.fps: expected a number, got the string \"30\""},
         BadCase{R"({"time_scale": -1})", "render.time_scale: expected a positive number, got -1"},
         BadCase{R"({"antialiasing": 0})",
-                "render.antialiasing: expected a whole number from 1 to 16"},
-        BadCase{R"({"antialiasing": 17})", "render.antialiasing: expected a whole number from 1"},
-        BadCase{R"({"antialiasing": 2.5})", "render.antialiasing: expected a whole number"},
+                "render.antialiasing: expected off, fxaa or multisampling samples per pixel from 2 "
+                "to 16 (1: off), got 0"},
+        BadCase{R"({"antialiasing": 17})", "render.antialiasing: expected off, fxaa or"},
+        BadCase{R"({"antialiasing": 2.5})", "render.antialiasing: expected off, fxaa or"},
+        BadCase{R"({"antialiasing": "smaa"})",
+                "render.antialiasing: expected off, fxaa or multisampling samples per pixel from 2 "
+                "to 16 (1: off), got \"smaa\""},
+        BadCase{R"({"antialiasing": "4"})", "render.antialiasing: expected off, fxaa or"},
+        BadCase{R"({"antialiasing": true})", "render.antialiasing: expected off, fxaa or"},
         BadCase{R"({"camera": 1})", "render.camera: expected an object, got 1"},
         BadCase{R"({"camera": {"zoom": 1}})",
                 "render.camera.zoom: unknown key; expected one of: mode"},
@@ -205,6 +211,22 @@ TEST(RenderSettings, NonFiniteNumbersAreRefused) {
   EXPECT_THAT(
       testing::input_error_of([&] { parse_render_settings(render, "scene.json", kBodies); }),
       HasSubstr("render.time_scale: expected a finite number, got inf"));
+}
+
+TEST(RenderSettings, AntialiasingIsOffFxaaOrSamples) {
+  using Mode = Antialiasing::Mode;
+  EXPECT_EQ(parse(R"({"antialiasing": "off"})").antialiasing, (Antialiasing{Mode::kOff, 1}));
+  EXPECT_EQ(parse(R"({"antialiasing": "fxaa"})").antialiasing, (Antialiasing{Mode::kFxaa, 1}));
+  EXPECT_EQ(parse(R"({"antialiasing": 1})").antialiasing, (Antialiasing{Mode::kOff, 1}));
+  EXPECT_EQ(parse(R"({"antialiasing": 16})").antialiasing, (Antialiasing{Mode::kMultisample, 16}));
+  // --aa's text: the same values.
+  EXPECT_EQ(antialiasing_from_text("off"), (Antialiasing{Mode::kOff, 1}));
+  EXPECT_EQ(antialiasing_from_text("fxaa"), (Antialiasing{Mode::kFxaa, 1}));
+  EXPECT_EQ(antialiasing_from_text("1"), (Antialiasing{Mode::kOff, 1}));
+  EXPECT_EQ(antialiasing_from_text("2"), (Antialiasing{Mode::kMultisample, 2}));
+  for (const char* bad : {"", "0", "17", "-4", "4x", " 4", "FXAA", "msaa"}) {
+    EXPECT_FALSE(antialiasing_from_text(bad).has_value()) << bad;
+  }
 }
 
 }  // namespace

@@ -58,13 +58,32 @@ inline constexpr int kMaxAntialiasing = 16;  ///< samples per pixel
 inline constexpr double kMinFontScale = 0.25;
 inline constexpr double kMaxFontScale = 8.0;
 
+/// How video frames are anti-aliased: `render.antialiasing` and --aa take "off", "fxaa" (the
+/// default: a post-process filter at ~1.15x the time of an aliased frame) or a number of
+/// multisampling samples per pixel, 2 to kMaxAntialiasing (1 means off, as in older scenes).
+struct Antialiasing {
+  enum class Mode { kOff, kFxaa, kMultisample };
+  Mode mode = Mode::kFxaa;
+  int samples = 1;  ///< multisampling samples per pixel (1 unless kMultisample)
+  bool operator==(const Antialiasing&) const = default;
+};
+
+/// "off", "fxaa" or a whole number of samples from 1 (off) to kMaxAntialiasing; nothing for any
+/// other text.
+std::optional<Antialiasing> antialiasing_from_text(const std::string& text);
+/// A sample count from 1 (off) to kMaxAntialiasing (the caller checks the range).
+Antialiasing antialiasing_samples(int samples);
+/// What a bad value gets told: the accepted values.
+inline constexpr const char* kAntialiasingExpected =
+    "expected off, fxaa or multisampling samples per pixel from 2 to 16 (1: off)";
+
 /// Everything `tumble render` needs beyond the simulation.
 struct RenderSettings {
   int width = 1280;
   int height = 720;
   double fps = 30.0;
-  double time_scale = 1.0;  ///< simulated seconds per second of video
-  int antialiasing = 1;     ///< samples per pixel (1: off)
+  double time_scale = 1.0;    ///< simulated seconds per second of video
+  Antialiasing antialiasing;  ///< FXAA unless the scene or --aa says otherwise
   CameraSettings camera;
   ShowSettings show;
   /// Text size of the overlay relative to the frame's own (1: 13 px at 1280x720, proportional

@@ -19,6 +19,7 @@
 #include "app/scene/scene.hpp"
 #include "render/draw_list.hpp"
 #include "render/image.hpp"
+#include "render/renderer.hpp"
 
 namespace tumble::engine {
 class Simulation;
@@ -47,9 +48,12 @@ struct VideoOptions {
 struct RenderOptions : VideoOptions {
   std::optional<std::string> integrator;
   std::optional<double> dt;
-  std::optional<int> antialiasing;  ///< samples per pixel
+  std::optional<std::string> antialiasing;  ///< "off", "fxaa" or samples per pixel
   bool no_overlay = false;
 };
+
+/// A renderer of width x height pixels anti-aliased as `antialiasing` says.
+render::RendererOptions renderer_options(const Antialiasing& antialiasing, int width, int height);
 
 /// A half-open range [first, end) of frame numbers.
 struct FrameRange {
