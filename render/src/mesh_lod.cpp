@@ -31,6 +31,8 @@ namespace {
 /// Stop when a level would have fewer triangles than this, or shrank by less than a tenth.
 constexpr std::size_t kCoarsestTriangles = 2000;
 constexpr double kLeastShrink = 0.9;
+/// The first simplified copy has a quarter of the triangles, and at least this many.
+constexpr std::size_t kFirstTriangles = 10000;
 
 }  // namespace
 
@@ -75,9 +77,12 @@ std::vector<LodLevel> build_lod_chain(const std::vector<Eigen::Vector3f>& positi
   std::vector<std::uint32_t> previous(full.begin(), full.end());
   std::vector<std::uint32_t> next(full.size());
   float error = 0.0f;
-  while (previous.size() / 3 / 2 >= kCoarsestTriangles) {
+  // The first copy is made from the full mesh straight down to a quarter (one pass over the
+  // big mesh: each simplification costs about as much as its input, so halving from a million
+  // triangles would cost twice this), the others halve the one before.
+  std::size_t target = std::max(full.size() / 3 / 4, kFirstTriangles) * 3;
+  while (target / 3 >= kCoarsestTriangles && target < previous.size()) {
     float step_error = 0.0f;
-    const std::size_t target = (previous.size() / 3 / 2) * 3;
     const std::size_t made =
         meshopt_simplify(next.data(), previous.data(), previous.size(), xyz, positions.size(),
                          stride, target, std::numeric_limits<float>::max(), 0, &step_error);
@@ -90,6 +95,7 @@ std::vector<LodLevel> build_lod_chain(const std::vector<Eigen::Vector3f>& positi
     levels.push_back({indices.size(), made, std::max({error, measured, levels.back().error})});
     indices.insert(indices.end(), next.begin(), next.begin() + static_cast<std::ptrdiff_t>(made));
     previous.assign(next.begin(), next.begin() + static_cast<std::ptrdiff_t>(made));
+    target = (made / 3 / 2) * 3;
   }
   return levels;
 }

@@ -21,8 +21,9 @@ struct LodLevel {
   float error = 0.0f;     ///< bound on the distance to the full surface, mesh units
 };
 
-/// The full mesh (level 0, error 0) followed by simplified copies, each about half the
-/// triangles of the one before, all referencing the same vertices. `indices` receives the
+/// The full mesh (level 0, error 0) followed by simplified copies, the first with a quarter
+/// of its triangles (at least 10,000), the others each about half the one before, all
+/// referencing the same vertices. `indices` receives the
 /// concatenation. A mesh of at most kLodMinTriangles triangles gets level 0 only.
 /// `normals` are the vertices' unit normals (the bound measures how far each simplified
 /// triangle's interior leaves the tangent planes at its corners).

@@ -51,12 +51,12 @@ float torus_distance(const Eigen::Vector3f& p) {
   return std::abs(std::hypot(ring, p.z()) - kMinor);
 }
 
-TEST(LodChain, EachLevelHalvesAndStaysWithinItsErrorOfTheSurface) {
+TEST(LodChain, EachLevelShrinksAndStaysWithinItsErrorOfTheSurface) {
   const MeshData mesh = torus(300, 150);  // 90,000 triangles
   std::vector<std::uint32_t> indices;
   const std::vector<detail::LodLevel> levels =
       detail::build_lod_chain(mesh.positions, mesh.normals, mesh.indices, indices);
-  ASSERT_GE(levels.size(), 4u);
+  ASSERT_GE(levels.size(), 3u);
   EXPECT_EQ(levels[0].count, mesh.indices.size());
   EXPECT_EQ(levels[0].error, 0.0f);
   // The full mesh's own distance to the torus: the sag of its chords (the coarser direction).
@@ -64,7 +64,7 @@ TEST(LodChain, EachLevelHalvesAndStaysWithinItsErrorOfTheSurface) {
                     (kMajor + kMinor) * (1.0f - std::cos(std::numbers::pi_v<float> / 300.0f));
   for (std::size_t k = 1; k < levels.size(); ++k) {
     SCOPED_TRACE(k);
-    EXPECT_LE(levels[k].count, levels[k - 1].count * 6 / 10);
+    EXPECT_LE(levels[k].count, levels[k - 1].count * (k == 1 ? 3 : 6) / 10);
     EXPECT_GE(levels[k].error, levels[k - 1].error);
     EXPECT_EQ(levels[k].first, levels[k - 1].first + levels[k - 1].count);
     // The triangles' centres lie within the level's error (plus the full mesh's sag) of the
@@ -163,7 +163,7 @@ TEST_P(LodImages, AgreeWithTheFullMeshWithinAPixelOfOutline) {
   }
   EXPECT_EQ(full_triangles, mesh.indices.size() / 3);
   // The level drawn is much coarser: this frame cannot pass by drawing the full mesh.
-  EXPECT_LT(reduced_triangles, full_triangles / 4);
+  EXPECT_LE(reduced_triangles, full_triangles / 4);
   const Comparison c = compare(reduced, full, empty);
   ASSERT_GT(c.body, 1000u);
   // Outline error under a pixel: the masks differ by at most the outline's length (measured:

@@ -193,7 +193,7 @@ render::RendererOptions shared_renderer_options(const Comparison& comparison) {
   const RenderSettings& frame = comparison.frame_settings;
   return render::RendererOptions{grid ? comparison.grid.tile_width : frame.width,
                                  grid ? comparison.grid.tile_height : frame.height,
-                                 frame.antialiasing};
+                                 frame.antialiasing, frame.lod};
 }
 
 /// Starts every run's job on the compiled scene, and in the overlay the reference's

@@ -37,6 +37,18 @@ void add_video_options(CLI::App& command, VideoOptions& options, const std::stri
           "--time-scale", [&](double value) { options.time_scale = value; },
           "Simulated seconds per second of video S (default 1; 0.5 is slow motion)")
       ->type_name("S");
+  command
+      .add_option_function<std::string>(
+          "--lod",
+          [&](const std::string& value) {
+            if (value != "on" && value != "off") {
+              throw CLI::ValidationError("--lod", "expected on or off, got '" + value + "'");
+            }
+            options.lod = value == "on";
+          },
+          "on (the default): meshes of more than 20,000 triangles are drawn from simplified "
+          "copies whose outline is under a pixel off; off: always the full mesh")
+      ->type_name("on|off");
   command.add_flag("-q,--quiet", options.quiet,
                    "No progress bar and no summary line (warnings and errors still print)");
 }

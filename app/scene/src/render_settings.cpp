@@ -114,7 +114,7 @@ ShowSettings parse_show(const Field& field, const std::vector<std::string>& body
 RenderSettings parse_render_settings(const nlohmann::json& render, const std::string& source,
                                      const std::vector<std::string>& body_names) {
   const Field top(render, "render", source);
-  top.expect_object({"size", "fps", "time_scale", "antialiasing", "camera", "show"});
+  top.expect_object({"size", "fps", "time_scale", "antialiasing", "lod", "camera", "show"});
   RenderSettings settings;
 
   // Image size: even sides (yuv420p halves both for the chroma planes).
@@ -143,6 +143,7 @@ RenderSettings parse_render_settings(const nlohmann::json& render, const std::st
   if (auto scale = top.find("time_scale")) settings.time_scale = scale->positive();
   if (auto samples = top.find("antialiasing"))
     settings.antialiasing = samples->integer(1, kMaxAntialiasing);
+  if (auto lod = top.find("lod")) settings.lod = lod->boolean();
 
   // What is seen, and from where.
   if (auto camera = top.find("camera")) settings.camera = parse_camera(*camera, body_names);

@@ -28,10 +28,10 @@ struct RenderJob::Impl {
         settings(plan.settings),
         compiled(std::move(compiled_scene)),
         simulation(make_simulation(scene, compiled)),
-        own_renderer(shared != nullptr
-                         ? nullptr
-                         : std::make_unique<render::Renderer>(render::RendererOptions{
-                               settings.width, settings.height, settings.antialiasing})),
+        own_renderer(shared != nullptr ? nullptr
+                                       : std::make_unique<render::Renderer>(render::RendererOptions{
+                                             settings.width, settings.height, settings.antialiasing,
+                                             settings.lod})),
         renderer(shared != nullptr ? *shared : *own_renderer),
         builder(scene, compiled, settings, renderer) {}
 

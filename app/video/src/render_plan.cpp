@@ -66,6 +66,7 @@ RenderSettings render_settings(const RenderOptions& options, const SceneDescript
     }
     settings.antialiasing = *options.antialiasing;
   }
+  if (options.lod) settings.lod = *options.lod;
   if (options.no_overlay) settings.show.overlay = false;
   return settings;
 }

@@ -62,6 +62,9 @@ struct RenderSettings {
   double fps = 30.0;
   double time_scale = 1.0;  ///< simulated seconds per second of video
   int antialiasing = 1;     ///< samples per pixel (1: off)
+  /// Draw big meshes from simplified copies under a pixel off (render::RendererOptions::lod);
+  /// false: always the full mesh.
+  bool lod = true;
   CameraSettings camera;
   ShowSettings show;
 };

@@ -39,6 +39,7 @@ struct VideoOptions {
   std::optional<double> fps;          ///< video frames per second
   std::optional<std::string> frames;  ///< "A:B", half-open
   std::optional<double> time_scale;   ///< simulated seconds per second of video
+  std::optional<bool> lod;            ///< --lod on|off
   bool quiet = false;
 };
 
