@@ -1,6 +1,7 @@
 #include "gpu_mesh.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -34,16 +35,25 @@ void validate(const MeshData& mesh) {
 
 }  // namespace
 
-void GpuMesh::draw() const {
+void GpuMesh::draw(std::size_t level) const {
   glBindVertexArray(vao.get());
-  if (index_buffer) {
+  if (index_buffer && !levels.empty()) {
+    const LodLevel& drawn = levels[std::min(level, levels.size() - 1)];
+    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(drawn.count), GL_UNSIGNED_INT,
+                   reinterpret_cast<const void*>(drawn.first * sizeof(std::uint32_t)));
+  } else if (index_buffer) {
     glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
   } else {
     glDrawArrays(GL_TRIANGLES, 0, count);
   }
 }
 
-GpuMesh upload_mesh(const MeshData& mesh) {
+std::size_t GpuMesh::triangles(std::size_t level) const {
+  if (levels.empty()) return static_cast<std::size_t>(count) / 3;
+  return levels[std::min(level, levels.size() - 1)].count / 3;
+}
+
+GpuMesh upload_mesh(const MeshData& mesh, bool with_lod) {
   validate(mesh);
   GpuMesh gpu;
 
@@ -87,11 +97,21 @@ GpuMesh upload_mesh(const MeshData& mesh) {
   glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float),
                         reinterpret_cast<const void*>(3 * sizeof(float)));
   if (!mesh.normals.empty()) {
+    std::vector<std::uint32_t> chained;
+    const std::vector<std::uint32_t>* indices = &mesh.indices;
+    if (with_lod) {
+      std::vector<Eigen::Vector3f> unit_normals(mesh.normals.size());
+      for (std::size_t i = 0; i < mesh.normals.size(); ++i) {
+        unit_normals[i] = mesh.normals[i].normalized();
+      }
+      gpu.levels = build_lod_chain(mesh.positions, unit_normals, mesh.indices, chained);
+      indices = &chained;
+    }
     gpu.index_buffer = GlBuffer::create();
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gpu.index_buffer.get());
     glBufferData(GL_ELEMENT_ARRAY_BUFFER,
-                 static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
-                 mesh.indices.data(), GL_STATIC_DRAW);
+                 static_cast<GLsizeiptr>(indices->size() * sizeof(std::uint32_t)), indices->data(),
+                 GL_STATIC_DRAW);
     gpu.count = static_cast<GLsizei>(mesh.indices.size());
   } else {
     gpu.count = static_cast<GLsizei>(vertices.size() / 6);

@@ -3,8 +3,11 @@
 // owns its GL objects (move-only); destroy it with its context current.
 
 #include <Eigen/Core>
+#include <cstddef>
+#include <vector>
 
 #include "gl_handle.hpp"
+#include "mesh_lod.hpp"
 #include "render/draw_list.hpp"
 
 namespace tumble::render::detail {
@@ -13,15 +16,22 @@ struct GpuMesh {
   GlVertexArray vao;
   GlBuffer vertex_buffer;
   GlBuffer index_buffer;  // none when the mesh was un-indexed for flat shading
-  GLsizei count = 0;      // indices (or vertices) to draw
+  GLsizei count = 0;      // indices (or vertices) of the full mesh
+  /// Level 0 is the full mesh; simplified copies follow (indexed meshes over
+  /// kLodMinTriangles triangles only), their indices after the full mesh's in index_buffer.
+  std::vector<LodLevel> levels;
   Eigen::Vector3f centre = Eigen::Vector3f::Zero();  // bounding sphere in the body frame
   float radius = 0.0f;
 
-  void draw() const;
+  /// Draws level `level` (clamped to the coarsest there is).
+  void draw(std::size_t level = 0) const;
+  /// Triangles of level `level` (clamped likewise).
+  std::size_t triangles(std::size_t level = 0) const;
 };
 
 /// Validates and uploads a mesh (throws std::invalid_argument naming what is wrong). Without
-/// normals the triangles are un-indexed so each gets its own flat normal.
-GpuMesh upload_mesh(const MeshData& mesh);
+/// normals the triangles are un-indexed so each gets its own flat normal. `with_lod` builds
+/// the simplified copies of a large indexed mesh.
+GpuMesh upload_mesh(const MeshData& mesh, bool with_lod = false);
 
 }  // namespace tumble::render::detail

@@ -16,9 +16,11 @@ struct Renderer::Impl {
   explicit Impl(const RendererOptions& options)
       : context(
             options.width, options.height, options.samples,
-            /*post_process=*/options.filter != AntialiasingFilter::none && options.samples <= 1) {}
+            /*post_process=*/options.filter != AntialiasingFilter::none && options.samples <= 1),
+        lod(options.lod) {}
 
   OffscreenContext context;
+  bool lod = true;
   std::vector<detail::GpuMesh> meshes;
   std::unique_ptr<detail::ScenePasses> scene;
   std::unique_ptr<detail::FxaaPass> fxaa;        // when the context has a post-process
@@ -27,7 +29,7 @@ struct Renderer::Impl {
 
 Renderer::Renderer(const RendererOptions& options) : impl_(std::make_unique<Impl>(options)) {
   impl_->context.make_current();
-  impl_->scene = std::make_unique<detail::ScenePasses>();
+  impl_->scene = std::make_unique<detail::ScenePasses>(options.lod);
   if (impl_->context.has_post_process())
     impl_->fxaa = std::make_unique<detail::FxaaPass>(options.width, options.height);
 }
@@ -43,7 +45,7 @@ Renderer::~Renderer() {
 
 MeshId Renderer::upload(const MeshData& mesh) {
   impl_->context.make_current();
-  impl_->meshes.push_back(detail::upload_mesh(mesh));
+  impl_->meshes.push_back(detail::upload_mesh(mesh, impl_->lod));
   return MeshId{static_cast<std::uint32_t>(impl_->meshes.size() - 1)};
 }
 
@@ -97,6 +99,10 @@ int Renderer::width() const {
 int Renderer::height() const {
   return impl_->context.height();
 }
+std::size_t Renderer::last_frame_triangles() const {
+  return impl_->scene->last_frame_triangles();
+}
+
 int Renderer::samples() const {
   return impl_->context.samples();
 }

@@ -47,7 +47,7 @@ Eigen::Matrix4f light_matrix(const Eigen::Vector3f& from, const Eigen::Vector3f&
 
 }  // namespace
 
-ScenePasses::ScenePasses()
+ScenePasses::ScenePasses(bool lod)
     : background_program_("background", shaders::kBackgroundVertex, shaders::kBackgroundFragment),
       mesh_program_("mesh", shaders::kMeshVertex, shaders::kMeshFragment),
       shadow_program_("shadow", shaders::kShadowVertex, shaders::kShadowFragment),
@@ -60,7 +60,8 @@ ScenePasses::ScenePasses()
                     shaders::kLineGeometry),
       point_program_("points", shaders::kPointVertex, shaders::kPointFragment),
       cylinder_(upload_mesh(unit_cylinder(24))),
-      cone_(upload_mesh(unit_cone(24))) {
+      cone_(upload_mesh(unit_cone(24))),
+      lod_(lod) {
   // The background triangle needs a (any) vertex array bound in a core profile.
   empty_vao_ = GlVertexArray::create();
 
@@ -92,7 +93,7 @@ void ScenePasses::draw(const DrawList& frame, const std::vector<GpuMesh>& meshes
   view_projection_ =
       projection_matrix(frame.camera, static_cast<float>(width) / static_cast<float>(height)) *
       view;
-  collect_solids(frame, meshes, view);
+  collect_solids(frame, meshes, view, height);
 
   // Shadow map from the key light, only when there is a ground to receive it.
   shadow_valid_ = false;
@@ -125,20 +126,22 @@ void ScenePasses::draw(const DrawList& frame, const std::vector<GpuMesh>& meshes
 }
 
 void ScenePasses::collect_solids(const DrawList& frame, const std::vector<GpuMesh>& meshes,
-                                 const Eigen::Matrix4f& view) {
+                                 const Eigen::Matrix4f& view, int height) {
   solids_.clear();
+  triangles_ = 0;
   for (const MeshInstance& instance : frame.meshes) {
     if (instance.mesh.value >= meshes.size() || !meshes[instance.mesh.value].vao) {
       throw std::invalid_argument("renderer: unknown mesh id " +
                                   std::to_string(instance.mesh.value));
     }
-    solids_.push_back({&meshes[instance.mesh.value], instance.pose, instance.colour, 0.0f});
+    solids_.push_back(
+        {&meshes[instance.mesh.value], instance.pose, instance.colour, 0.0f, 0, 1.0f});
   }
   for (const Arrow& arrow : frame.arrows) {
     ArrowTransforms placed;
     if (!arrow_transforms(arrow, placed)) continue;
-    solids_.push_back({&cylinder_, placed.shaft, arrow.colour, 0.0f});
-    solids_.push_back({&cone_, placed.head, arrow.colour, 0.0f});
+    solids_.push_back({&cylinder_, placed.shaft, arrow.colour, 0.0f, 0, 1.0f});
+    solids_.push_back({&cone_, placed.head, arrow.colour, 0.0f, 0, 1.0f});
   }
 
   // View depth of each solid's centre, and a sphere bounding the whole scene.
@@ -148,8 +151,19 @@ void ScenePasses::collect_solids(const DrawList& frame, const std::vector<GpuMes
     const Eigen::Vector3f centre = (solid.model * solid.mesh->centre.homogeneous()).head<3>();
     const float scale = solid.model.block<3, 3>(0, 0).colwise().norm().maxCoeff();
     solid.view_depth = -(view * centre.homogeneous()).z();
+    solid.scale = scale;
     spheres.emplace_back(centre, solid.mesh->radius * scale);
     box.extend(centre);
+    // Level of detail: pixels per world unit at the mesh's nearest point (perspective:
+    // height / (2 tan(fov / 2) depth)), the coarsest level under a pixel there.
+    if (lod_ && solid.mesh->levels.size() > 1) {
+      const float nearest =
+          std::max(solid.view_depth - solid.mesh->radius * scale, frame.camera.near_plane);
+      const float half_fov = 0.5f * frame.camera.vertical_fov_deg * 3.14159265f / 180.0f;
+      const float pixels_per_unit =
+          static_cast<float>(height) / (2.0f * std::tan(half_fov) * nearest) * scale;
+      solid.level = pick_lod_level(solid.mesh->levels, pixels_per_unit);
+    }
   }
   scene_centre_ = box.isEmpty() ? Eigen::Vector3f::Zero() : Eigen::Vector3f(box.center());
   scene_radius_ = 0.0f;
@@ -190,10 +204,16 @@ void ScenePasses::draw_shadow_map(const DrawList& frame) {
   glClear(GL_DEPTH_BUFFER_BIT);
   shadow_program_.use();
   const GLint mvp = shadow_program_.uniform("light_model_view_projection");
+  // The shadow map's texels span 2 radius / kShadowMapSize: a coarser level is as good there.
+  const float texels_per_unit = static_cast<float>(kShadowMapSize) / (2.0f * radius);
   for (const Solid& solid : solids_) {
     const Eigen::Matrix4f matrix = light_view_projection_ * solid.model;
     glUniformMatrix4fv(mvp, 1, GL_FALSE, matrix.data());
-    solid.mesh->draw();
+    const std::size_t level =
+        lod_ ? std::max(solid.level,
+                        pick_lod_level(solid.mesh->levels, texels_per_unit * solid.scale))
+             : 0;
+    solid.mesh->draw(level);
   }
   shadow_valid_ = true;
 }
@@ -293,10 +313,12 @@ void ScenePasses::draw_solids(bool translucent) {
     set_colour(mesh_program_, solid->colour);
     if (translucent) {
       glCullFace(GL_FRONT);
-      solid->mesh->draw();
+      solid->mesh->draw(solid->level);
       glCullFace(GL_BACK);
+      triangles_ += solid->mesh->triangles(solid->level);
     }
-    solid->mesh->draw();
+    solid->mesh->draw(solid->level);
+    triangles_ += solid->mesh->triangles(solid->level);
   }
   glDisable(GL_CULL_FACE);
   glDisable(GL_BLEND);

@@ -2,6 +2,7 @@
 // The 3D part of a frame: background gradient, optional ground with a soft shadow, shaded
 // meshes and arrows (opaque, then translucent back to front), polylines and points.
 
+#include <cstddef>
 #include <vector>
 
 #include "gl_program.hpp"
@@ -15,7 +16,8 @@ class ScenePasses {
  public:
   /// Compiles the programs and builds the arrow shapes; needs the context current, also when
   /// it is destroyed (its members own the GL objects).
-  ScenePasses();
+  /// `lod`: draw large meshes from their simplified copies where those are under a pixel off.
+  explicit ScenePasses(bool lod = true);
   ScenePasses(const ScenePasses&) = delete;
   ScenePasses& operator=(const ScenePasses&) = delete;
 
@@ -23,17 +25,22 @@ class ScenePasses {
   /// std::invalid_argument for a MeshId this renderer never returned.
   void draw(const DrawList& frame, const std::vector<GpuMesh>& meshes, OffscreenContext& context);
 
+  /// Triangles drawn into the image by the last draw() (shadow pass not counted).
+  std::size_t last_frame_triangles() const { return triangles_; }
+
  private:
   /// One shaded solid (a mesh instance or half an arrow) of the current frame.
   struct Solid {
     const GpuMesh* mesh;
     Eigen::Matrix4f model;
     Rgba colour;
-    float view_depth;  // distance along the view direction, to sort translucent solids
+    float view_depth;       // distance along the view direction, to sort translucent solids
+    std::size_t level = 0;  // level of detail drawn (GpuMesh::levels)
+    float scale = 1.0f;     // largest axis scale of `model`
   };
 
   void collect_solids(const DrawList& frame, const std::vector<GpuMesh>& meshes,
-                      const Eigen::Matrix4f& view);
+                      const Eigen::Matrix4f& view, int height);
   void draw_shadow_map(const DrawList& frame);
   void draw_background(const SceneStyle& style);
   void draw_ground(const DrawList& frame, int height);
@@ -65,6 +72,8 @@ class ScenePasses {
   Eigen::Vector3f scene_centre_ = Eigen::Vector3f::Zero();
   float scene_radius_ = 0.0f;
   bool shadow_valid_ = false;
+  bool lod_ = true;
+  std::size_t triangles_ = 0;
 };
 
 }  // namespace tumble::render::detail

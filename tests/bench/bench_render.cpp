@@ -45,8 +45,10 @@ MeshData torus(int rings, int sides, float major, float minor) {
   return mesh;
 }
 
-/// range(0) = 0: ~2k triangles (32 x 32 torus), 1: ~20k triangles (100 x 100 torus).
+/// range(0) = 0: ~2k triangles (32 x 32 torus), 1: ~20k triangles (100 x 100 torus),
+/// 2: 1,000,000 triangles (1000 x 500 torus).
 MeshData body_for(int64_t size) {
+  if (size == 2) return torus(1000, 500, 0.6f, 0.25f);
   return size == 0 ? torus(32, 32, 0.6f, 0.25f) : torus(100, 100, 0.6f, 0.25f);
 }
 
@@ -146,6 +148,74 @@ BENCHMARK(BM_RenderToPng)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Iterations(150);
+
+/// A 1,000,000-triangle body, level of detail on (range(0) = 1) or off: upload (the
+/// simplified copies are built there), drawing alone (full = 0: the bare body; 1: with ground,
+/// shadow, arrows, trail and panel), and end to end into H.264.
+void BM_UploadMillion(benchmark::State& state) {
+  const MeshData mesh = body_for(2);
+  Renderer renderer({kWidth, kHeight, 1, state.range(0) != 0});
+  for (auto _ : state) {
+    const std::size_t keep = renderer.mesh_count();
+    benchmark::DoNotOptimize(renderer.upload(mesh));
+    renderer.release_meshes(keep);
+  }
+}
+BENCHMARK(BM_UploadMillion)
+    ->Arg(0)
+    ->Arg(1)
+    ->ArgName("lod")
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+
+void BM_RenderMillion(benchmark::State& state) {
+  Renderer renderer({kWidth, kHeight, 1, state.range(0) != 0});
+  const MeshId body = renderer.upload(body_for(2));
+  Image image;
+  int step = 0;
+  for (auto _ : state) {
+    renderer.render(frame_for(body, step++, state.range(1) != 0), image);
+    benchmark::DoNotOptimize(image.rgba.data());
+  }
+  state.counters["fps"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["triangles"] = static_cast<double>(renderer.last_frame_triangles());
+}
+BENCHMARK(BM_RenderMillion)
+    ->ArgsProduct({{0, 1}, {0, 1}})
+    ->ArgNames({"lod", "full"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
+
+void BM_RenderMillionToMp4(benchmark::State& state) {
+  const auto dir = std::filesystem::temp_directory_path() / "tumble_bench_render_million";
+  std::filesystem::create_directories(dir);
+  Renderer renderer({kWidth, kHeight, 1, state.range(0) != 0});
+  const MeshId body = renderer.upload(body_for(2));
+  Image image;
+  int step = 0;
+  SinkOptions options;
+  options.width = kWidth;
+  options.height = kHeight;
+  options.fps = 30.0;
+  auto sink = open_image_sink(dir / "out.mp4", options);
+  for (auto _ : state) {
+    renderer.render(frame_for(body, step++, false), image);
+    sink->write(image);
+  }
+  sink->finish();
+  state.counters["fps"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  std::filesystem::remove_all(dir);
+}
+BENCHMARK(BM_RenderMillionToMp4)
+    ->Arg(0)
+    ->Arg(1)
+    ->ArgName("lod")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(90);
 
 }  // namespace
 

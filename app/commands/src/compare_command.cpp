@@ -191,7 +191,7 @@ render::RendererOptions shared_renderer_options(const Comparison& comparison) {
   const bool grid = comparison.layout == CompareLayout::kGrid;
   const RenderSettings& frame = comparison.frame_settings;
   return renderer_options(frame.antialiasing, grid ? comparison.grid.tile_width : frame.width,
-                          grid ? comparison.grid.tile_height : frame.height);
+                          grid ? comparison.grid.tile_height : frame.height, frame.lod);
 }
 
 /// Starts every run's job on the compiled scene, and in the overlay the reference's

@@ -43,6 +43,18 @@ void add_video_options(CLI::App& command, VideoOptions& options, const std::stri
           "Overlay text size F times the frame's own (default 1: 13 px at 1280x720, proportional "
           "to the frame, never under 10 px; 0.25 to 8)")
       ->type_name("F");
+  command
+      .add_option_function<std::string>(
+          "--lod",
+          [&](const std::string& value) {
+            if (value != "on" && value != "off") {
+              throw CLI::ValidationError("--lod", "expected on or off, got '" + value + "'");
+            }
+            options.lod = value == "on";
+          },
+          "on (the default): meshes of more than 20,000 triangles are drawn from simplified "
+          "copies whose outline is under a pixel off; off: always the full mesh")
+      ->type_name("on|off");
   command.add_flag("-q,--quiet", options.quiet,
                    "No progress bar and no summary line (warnings and errors still print)");
 }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <unordered_map>
 #include <vector>
 
 #include "app/frame/frame_builder.hpp"
@@ -27,32 +28,48 @@ namespace detail {
 render::MeshData shaded_mesh_data(const engine::TriangleMesh& mesh, double crease_angle_deg) {
   const double cos_crease = std::cos(crease_angle_deg * std::numbers::pi / 180.0);
 
-  // Area-weighted face normals and the triangles around each vertex.
+  // Area-weighted and unit face normals, and the triangles around each vertex.
   std::vector<Eigen::Vector3d> face_normals(mesh.triangles.size());
+  std::vector<Eigen::Vector3d> unit_normals(mesh.triangles.size());
   std::vector<std::vector<std::size_t>> faces_at(mesh.positions.size());
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
     const auto& t = mesh.triangles[f];
     const Eigen::Vector3d& a = mesh.positions[t[0]];
     face_normals[f] = (mesh.positions[t[1]] - a).cross(mesh.positions[t[2]] - a);
+    unit_normals[f] = face_normals[f].normalized();
     for (std::uint32_t v : t) faces_at[v].push_back(f);
   }
 
-  // One vertex per corner, its normal averaged over the faces within the crease angle.
+  // Each corner's normal averages the faces within the crease angle of its own; corners of a
+  // vertex with the same normal share one output vertex (all of them on a smooth surface), so
+  // the mesh stays connected for the renderer's simplifier and its vertex cache.
   render::MeshData out;
-  out.positions.reserve(3 * mesh.triangles.size());
-  out.normals.reserve(3 * mesh.triangles.size());
   out.indices.reserve(3 * mesh.triangles.size());
+  constexpr std::uint32_t kNone = 0xffffffffu;
+  std::vector<std::uint32_t> first_out(mesh.positions.size(), kNone);
+  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> more_out;  // crease vertices
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
-    const Eigen::Vector3d own = face_normals[f].normalized();
     for (std::uint32_t v : mesh.triangles[f]) {
       Eigen::Vector3d sum = Eigen::Vector3d::Zero();
       for (std::size_t g : faces_at[v]) {
-        if (face_normals[g].normalized().dot(own) >= cos_crease) sum += face_normals[g];
+        if (unit_normals[g].dot(unit_normals[f]) >= cos_crease) sum += face_normals[g];
       }
-      const Eigen::Vector3d normal = sum.squaredNorm() > 0.0 ? sum.normalized() : own;
-      out.indices.push_back(static_cast<std::uint32_t>(out.positions.size()));
-      out.positions.push_back(mesh.positions[v].cast<float>());
-      out.normals.push_back(normal.cast<float>());
+      const Eigen::Vector3f normal =
+          (sum.squaredNorm() > 0.0 ? sum.normalized() : unit_normals[f]).cast<float>();
+      std::uint32_t index = first_out[v];
+      if (index != kNone && out.normals[index] != normal) {
+        index = kNone;
+        for (std::uint32_t other : more_out[v]) {
+          if (out.normals[other] == normal) index = other;
+        }
+      }
+      if (index == kNone) {
+        index = static_cast<std::uint32_t>(out.positions.size());
+        (first_out[v] == kNone ? first_out[v] : more_out[v].emplace_back()) = index;
+        out.positions.push_back(mesh.positions[v].cast<float>());
+        out.normals.push_back(normal);
+      }
+      out.indices.push_back(index);
     }
   }
   return out;

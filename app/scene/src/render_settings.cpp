@@ -146,7 +146,8 @@ std::optional<Antialiasing> antialiasing_from_text(const std::string& text) {
 RenderSettings parse_render_settings(const nlohmann::json& render, const std::string& source,
                                      const std::vector<std::string>& body_names) {
   const Field top(render, "render", source);
-  top.expect_object({"size", "fps", "time_scale", "antialiasing", "camera", "show", "font_scale"});
+  top.expect_object(
+      {"size", "fps", "time_scale", "antialiasing", "camera", "show", "font_scale", "lod"});
   RenderSettings settings;
 
   // Image size: even sides (yuv420p halves both for the chroma planes).
@@ -183,6 +184,7 @@ RenderSettings parse_render_settings(const nlohmann::json& render, const std::st
                   number_text(kMaxFontScale) + ", got " + number_text(settings.font_scale));
     }
   }
+  if (auto lod = top.find("lod")) settings.lod = lod->boolean();
 
   // What is seen, and from where.
   if (auto camera = top.find("camera")) settings.camera = parse_camera(*camera, body_names);

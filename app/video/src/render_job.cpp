@@ -10,8 +10,9 @@
 
 namespace tumble::app {
 
-render::RendererOptions renderer_options(const Antialiasing& antialiasing, int width, int height) {
-  render::RendererOptions options{width, height, antialiasing.samples};
+render::RendererOptions renderer_options(const Antialiasing& antialiasing, int width, int height,
+                                         bool lod) {
+  render::RendererOptions options{width, height, antialiasing.samples, lod};
   if (antialiasing.mode == Antialiasing::Mode::kFxaa) {
     options.filter = render::AntialiasingFilter::fxaa;
   }
@@ -36,10 +37,10 @@ struct RenderJob::Impl {
         settings(plan.settings),
         compiled(std::move(compiled_scene)),
         simulation(make_simulation(scene, compiled)),
-        own_renderer(shared != nullptr
-                         ? nullptr
-                         : std::make_unique<render::Renderer>(renderer_options(
-                               settings.antialiasing, settings.width, settings.height))),
+        own_renderer(shared != nullptr ? nullptr
+                                       : std::make_unique<render::Renderer>(
+                                             renderer_options(settings.antialiasing, settings.width,
+                                                              settings.height, settings.lod))),
         renderer(shared != nullptr ? *shared : *own_renderer),
         builder(scene, compiled, settings, renderer) {}
 

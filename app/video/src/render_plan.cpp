@@ -74,6 +74,7 @@ RenderSettings render_settings(const RenderOptions& options, const SceneDescript
     }
     settings.antialiasing = *parsed;
   }
+  if (options.lod) settings.lod = *options.lod;
   if (options.no_overlay) settings.show.overlay = false;
   return settings;
 }

@@ -14,6 +14,10 @@
 // - Pass order: vertical-gradient background (a full-screen triangle, so no clear colour to keep
 //   in sync), ground plane, opaque meshes and arrows, polylines and points, translucent meshes
 //   sorted back to front, then ImGui text and panels.
+// - Level of detail (RendererOptions::lod): large meshes get a chain of simplified index
+//   buffers over the same vertices, each with a bound on its distance to the full surface; a
+//   frame draws the coarsest level whose bound, at the mesh's nearest depth, is under a pixel,
+//   so the outline moves by less than a pixel. Callers' data (mass properties) never change.
 // - Shading is per pixel: a key light (which also casts the shadow), a fill light mirrored about
 //   the view direction and a hemisphere ambient, so a tumbling body never turns black.
 // - Shadows: a 1024^2 depth map rendered from the key light (orthographic, fitted to the scene's
@@ -48,6 +52,10 @@ struct RendererOptions {
   /// driver supports (4 on llvmpipe); 4x costs about 3x the time of 1x per frame on llvmpipe,
   /// mostly in the resolve, so it suits final renders rather than previews.
   int samples = 1;
+  /// Level of detail: a mesh of more than 20,000 triangles also gets simplified copies
+  /// (meshoptimizer) at upload, and each frame draws the coarsest whose surface lies under a
+  /// pixel from the full mesh's at the size it is drawn. false: always the full mesh.
+  bool lod = true;
   /// Post-process anti-aliasing of the 3D scene (not the overlay). Ignored when multisampling
   /// is in use (samples > 1 after clamping). Off by default here, so golden images stay
   /// aliased; `tumble render` and `tumble compare` choose fxaa unless told otherwise.
@@ -100,6 +108,9 @@ class Renderer {
   int height() const;
   /// Samples per pixel actually used.
   int samples() const;
+  /// Triangles the last frame drew into the image (after the level of detail's choice; the
+  /// shadow pass not counted).
+  std::size_t last_frame_triangles() const;
   /// The post-process filter actually used (none when multisampling).
   AntialiasingFilter filter() const;
 

@@ -84,6 +84,9 @@ struct RenderSettings {
   double fps = 30.0;
   double time_scale = 1.0;    ///< simulated seconds per second of video
   Antialiasing antialiasing;  ///< FXAA unless the scene or --aa says otherwise
+  /// Draw big meshes from simplified copies under a pixel off (render::RendererOptions::lod);
+  /// false: always the full mesh.
+  bool lod = true;
   CameraSettings camera;
   ShowSettings show;
   /// Text size of the overlay relative to the frame's own (1: 13 px at 1280x720, proportional

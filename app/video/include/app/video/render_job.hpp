@@ -41,6 +41,7 @@ struct VideoOptions {
   std::optional<std::string> frames;  ///< "A:B", half-open
   std::optional<double> time_scale;   ///< simulated seconds per second of video
   std::optional<double> font_scale;   ///< overlay text size relative to the frame's own
+  std::optional<bool> lod;            ///< --lod on|off
   bool quiet = false;
 };
 
@@ -52,8 +53,10 @@ struct RenderOptions : VideoOptions {
   bool no_overlay = false;
 };
 
-/// A renderer of width x height pixels anti-aliased as `antialiasing` says.
-render::RendererOptions renderer_options(const Antialiasing& antialiasing, int width, int height);
+/// A renderer of width x height pixels anti-aliased as `antialiasing` says, drawing big meshes
+/// from their simplified copies when `lod`.
+render::RendererOptions renderer_options(const Antialiasing& antialiasing, int width, int height,
+                                         bool lod);
 
 /// A half-open range [first, end) of frame numbers.
 struct FrameRange {

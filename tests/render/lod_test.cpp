@@ -1,0 +1,195 @@
+// Display level of detail: the simplified copies' error bounds against the analytic surface the
+// mesh samples, the level rule, and images drawn from them against the full mesh's.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <vector>
+
+#include "mesh_lod.hpp"
+#include "render/renderer.hpp"
+#include "render_support.hpp"
+
+namespace tumble::render {
+namespace {
+
+constexpr float kMajor = 0.6f;
+constexpr float kMinor = 0.25f;
+
+/// Torus about z with smooth normals: 2 * rings * sides triangles.
+MeshData torus(int rings, int sides) {
+  MeshData mesh;
+  const float two_pi = 2.0f * std::numbers::pi_v<float>;
+  for (int i = 0; i < rings; ++i) {
+    const float u = two_pi * static_cast<float>(i) / static_cast<float>(rings);
+    for (int j = 0; j < sides; ++j) {
+      const float v = two_pi * static_cast<float>(j) / static_cast<float>(sides);
+      const Eigen::Vector3f centre(kMajor * std::cos(u), kMajor * std::sin(u), 0.0f);
+      const Eigen::Vector3f normal(std::cos(v) * std::cos(u), std::cos(v) * std::sin(u),
+                                   std::sin(v));
+      mesh.positions.push_back(centre + kMinor * normal);
+      mesh.normals.push_back(normal);
+    }
+  }
+  for (int i = 0; i < rings; ++i) {
+    for (int j = 0; j < sides; ++j) {
+      const auto a = static_cast<std::uint32_t>(i * sides + j);
+      const auto b = static_cast<std::uint32_t>(((i + 1) % rings) * sides + j);
+      const auto c = static_cast<std::uint32_t>(((i + 1) % rings) * sides + (j + 1) % sides);
+      const auto d = static_cast<std::uint32_t>(i * sides + (j + 1) % sides);
+      mesh.indices.insert(mesh.indices.end(), {a, b, c, a, c, d});
+    }
+  }
+  return mesh;
+}
+
+/// Distance from a point to the analytic torus surface.
+float torus_distance(const Eigen::Vector3f& p) {
+  const float ring = std::hypot(p.x(), p.y()) - kMajor;
+  return std::abs(std::hypot(ring, p.z()) - kMinor);
+}
+
+TEST(LodChain, EachLevelShrinksAndStaysWithinItsErrorOfTheSurface) {
+  const MeshData mesh = torus(300, 150);  // 90,000 triangles
+  std::vector<std::uint32_t> indices;
+  const std::vector<detail::LodLevel> levels =
+      detail::build_lod_chain(mesh.positions, mesh.normals, mesh.indices, indices);
+  ASSERT_GE(levels.size(), 3u);
+  EXPECT_EQ(levels[0].count, mesh.indices.size());
+  EXPECT_EQ(levels[0].error, 0.0f);
+  // The full mesh's own distance to the torus: the sag of its chords (the coarser direction).
+  const float sag = kMinor * (1.0f - std::cos(std::numbers::pi_v<float> / 150.0f)) +
+                    (kMajor + kMinor) * (1.0f - std::cos(std::numbers::pi_v<float> / 300.0f));
+  for (std::size_t k = 1; k < levels.size(); ++k) {
+    SCOPED_TRACE(k);
+    EXPECT_LE(levels[k].count, levels[k - 1].count * (k == 1 ? 3 : 6) / 10);
+    EXPECT_GE(levels[k].error, levels[k - 1].error);
+    EXPECT_EQ(levels[k].first, levels[k - 1].first + levels[k - 1].count);
+    // The triangles' centres lie within the level's error (plus the full mesh's sag) of the
+    // surface: an oracle independent of the simplifier's own bookkeeping.
+    float worst = 0.0f;
+    for (std::size_t t = levels[k].first; t < levels[k].first + levels[k].count; t += 3) {
+      const Eigen::Vector3f centre = (mesh.positions[indices[t]] + mesh.positions[indices[t + 1]] +
+                                      mesh.positions[indices[t + 2]]) /
+                                     3.0f;
+      worst = std::max(worst, torus_distance(centre));
+    }
+    EXPECT_LE(worst, levels[k].error + sag + 1e-5f)
+        << "ratio " << worst / (levels[k].error + sag) << " tris " << levels[k].count / 3;
+  }
+  // Small meshes are left whole.
+  const MeshData small = torus(40, 40);
+  EXPECT_EQ(detail::build_lod_chain(small.positions, small.normals, small.indices, indices).size(),
+            1u);
+}
+
+TEST(LodChain, PicksTheCoarsestLevelUnderAPixel) {
+  const std::vector<detail::LodLevel> levels{
+      {0, 300, 0.0f}, {300, 150, 0.001f}, {450, 75, 0.004f}, {525, 36, 0.02f}};
+  EXPECT_EQ(detail::pick_lod_level(levels, 100.0f), 2u);   // 0.4 px; the next 2 px
+  EXPECT_EQ(detail::pick_lod_level(levels, 1000.0f), 0u);  // even the first is 1 px
+  EXPECT_EQ(detail::pick_lod_level(levels, 10.0f), 3u);
+  EXPECT_EQ(detail::pick_lod_level(levels, std::nanf("")), 0u);
+  EXPECT_EQ(detail::pick_lod_level(levels, 0.0f), 0u);
+}
+
+DrawList torus_frame(MeshId mesh, float distance) {
+  DrawList frame;
+  frame.camera.eye = distance * Eigen::Vector3f(0.45f, -0.75f, 0.5f).normalized();
+  frame.camera.target = Eigen::Vector3f::Zero();
+  const Eigen::Affine3f pose(Eigen::AngleAxisf(0.4f, Eigen::Vector3f(1, 2, 3).normalized()));
+  frame.meshes.push_back({mesh, pose.matrix(), {0.85f, 0.55f, 0.25f, 1.0f}});
+  return frame;
+}
+
+/// Pixels that differ from the empty frame: the body's mask.
+std::vector<bool> body_mask(const Image& frame, const Image& empty) {
+  std::vector<bool> mask(static_cast<std::size_t>(frame.width * frame.height));
+  for (int y = 0; y < frame.height; ++y) {
+    for (int x = 0; x < frame.width; ++x) {
+      mask[static_cast<std::size_t>(y * frame.width + x)] =
+          testing::pixel_difference(frame, empty, x, y) > 4;
+    }
+  }
+  return mask;
+}
+
+struct Comparison {
+  std::size_t mask_xor = 0;
+  std::size_t outline = 0;  ///< mask pixels of the full image with a 4-neighbour outside it
+  std::size_t body = 0;
+  std::size_t differing = 0;  ///< pixels off by more than 8 levels in a channel
+};
+
+Comparison compare(const Image& lod, const Image& full, const Image& empty) {
+  const std::vector<bool> a = body_mask(lod, empty);
+  const std::vector<bool> b = body_mask(full, empty);
+  Comparison result;
+  const int w = full.width;
+  for (int y = 1; y + 1 < full.height; ++y) {
+    for (int x = 1; x + 1 < w; ++x) {
+      const auto i = static_cast<std::size_t>(y * w + x);
+      result.mask_xor += a[i] != b[i];
+      result.body += b[i];
+      result.outline += b[i] && (!b[i - 1] || !b[i + 1] || !b[i - static_cast<std::size_t>(w)] ||
+                                 !b[i + static_cast<std::size_t>(w)]);
+      result.differing += testing::pixel_difference(lod, full, x, y) > 8;
+    }
+  }
+  return result;
+}
+
+class LodImages : public ::testing::TestWithParam<std::pair<int, int>> {};
+
+TEST_P(LodImages, AgreeWithTheFullMeshWithinAPixelOfOutline) {
+  const auto [width, height] = GetParam();
+  const MeshData mesh = torus(500, 250);  // 250,000 triangles
+  Image empty, full, reduced;
+  std::size_t full_triangles = 0;
+  std::size_t reduced_triangles = 0;
+  for (const bool lod : {false, true}) {
+    Renderer renderer(RendererOptions{width, height, 1, lod});
+    const MeshId id = renderer.upload(mesh);
+    const DrawList frame = torus_frame(id, 3.2f);
+    renderer.render(frame, lod ? reduced : full);
+    (lod ? reduced_triangles : full_triangles) = renderer.last_frame_triangles();
+    if (!lod) {
+      DrawList nothing;
+      nothing.camera = frame.camera;
+      renderer.render(nothing, empty);
+    }
+  }
+  EXPECT_EQ(full_triangles, mesh.indices.size() / 3);
+  // The level drawn is much coarser: this frame cannot pass by drawing the full mesh.
+  EXPECT_LE(reduced_triangles, full_triangles / 4);
+  const Comparison c = compare(reduced, full, empty);
+  ASSERT_GT(c.body, 1000u);
+  // Outline error under a pixel: the masks differ by at most the outline's length (measured:
+  // about a twentieth of it), and shading differences are rare.
+  EXPECT_LE(c.mask_xor, c.outline);
+  EXPECT_LT(static_cast<double>(c.differing), 0.01 * static_cast<double>(c.body));
+}
+
+INSTANTIATE_TEST_SUITE_P(Sizes, LodImages,
+                         ::testing::Values(std::pair{1280, 720}, std::pair{480, 270}));
+
+TEST(LodImages, CloserBodiesDrawFinerLevels) {
+  const MeshData mesh = torus(500, 250);
+  Renderer renderer(RendererOptions{640, 360, 1, true});
+  const MeshId id = renderer.upload(mesh);
+  std::vector<std::size_t> drawn;
+  for (const float distance : {1.0f, 3.0f, 10.0f, 40.0f}) {
+    Image image;
+    renderer.render(torus_frame(id, distance), image);
+    drawn.push_back(renderer.last_frame_triangles());
+  }
+  // Never finer farther away, and the near and far ends differ a lot.
+  for (std::size_t i = 1; i < drawn.size(); ++i) EXPECT_LE(drawn[i], drawn[i - 1]) << i;
+  EXPECT_GT(drawn.front(), 8 * drawn.back());
+  EXPECT_LT(drawn.back(), 10000u);
+}
+
+}  // namespace
+}  // namespace tumble::render
