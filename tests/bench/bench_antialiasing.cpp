@@ -11,6 +11,7 @@
 #include <numbers>
 
 #include "render/renderer.hpp"
+#include "support/torus_mesh.hpp"
 
 namespace {
 
@@ -22,29 +23,7 @@ constexpr int kHeight = 720;
 /// A torus with smooth normals, rings x sides x 2 triangles (100 x 100: 20k, like the demo's
 /// meshes).
 MeshData ring(int rings = 100, int sides = 100) {
-  MeshData mesh;
-  const float two_pi = 2.0f * std::numbers::pi_v<float>;
-  for (int i = 0; i < rings; ++i) {
-    const float u = two_pi * static_cast<float>(i) / static_cast<float>(rings);
-    for (int j = 0; j < sides; ++j) {
-      const float v = two_pi * static_cast<float>(j) / static_cast<float>(sides);
-      const Eigen::Vector3f normal(std::cos(v) * std::cos(u), std::cos(v) * std::sin(u),
-                                   std::sin(v));
-      mesh.positions.push_back(Eigen::Vector3f(0.6f * std::cos(u), 0.6f * std::sin(u), 0.0f) +
-                               0.25f * normal);
-      mesh.normals.push_back(normal);
-    }
-  }
-  for (int i = 0; i < rings; ++i) {
-    for (int j = 0; j < sides; ++j) {
-      const auto a = static_cast<std::uint32_t>(i * sides + j);
-      const auto b = static_cast<std::uint32_t>(((i + 1) % rings) * sides + j);
-      const auto c = static_cast<std::uint32_t>(((i + 1) % rings) * sides + (j + 1) % sides);
-      const auto d = static_cast<std::uint32_t>(i * sides + (j + 1) % sides);
-      mesh.indices.insert(mesh.indices.end(), {a, b, c, a, c, d});
-    }
-  }
-  return mesh;
+  return tumble::testing::torus_mesh(rings, sides);
 }
 
 /// The body at step i over the ground (with shadow; none when `light`), with its body axes and

@@ -11,6 +11,7 @@
 #include "mesh_lod.hpp"
 #include "render/renderer.hpp"
 #include "render_support.hpp"
+#include "support/torus_mesh.hpp"
 
 namespace tumble::render {
 namespace {
@@ -18,31 +19,8 @@ namespace {
 constexpr float kMajor = 0.6f;
 constexpr float kMinor = 0.25f;
 
-/// Torus about z with smooth normals: 2 * rings * sides triangles.
 MeshData torus(int rings, int sides) {
-  MeshData mesh;
-  const float two_pi = 2.0f * std::numbers::pi_v<float>;
-  for (int i = 0; i < rings; ++i) {
-    const float u = two_pi * static_cast<float>(i) / static_cast<float>(rings);
-    for (int j = 0; j < sides; ++j) {
-      const float v = two_pi * static_cast<float>(j) / static_cast<float>(sides);
-      const Eigen::Vector3f centre(kMajor * std::cos(u), kMajor * std::sin(u), 0.0f);
-      const Eigen::Vector3f normal(std::cos(v) * std::cos(u), std::cos(v) * std::sin(u),
-                                   std::sin(v));
-      mesh.positions.push_back(centre + kMinor * normal);
-      mesh.normals.push_back(normal);
-    }
-  }
-  for (int i = 0; i < rings; ++i) {
-    for (int j = 0; j < sides; ++j) {
-      const auto a = static_cast<std::uint32_t>(i * sides + j);
-      const auto b = static_cast<std::uint32_t>(((i + 1) % rings) * sides + j);
-      const auto c = static_cast<std::uint32_t>(((i + 1) % rings) * sides + (j + 1) % sides);
-      const auto d = static_cast<std::uint32_t>(i * sides + (j + 1) % sides);
-      mesh.indices.insert(mesh.indices.end(), {a, b, c, a, c, d});
-    }
-  }
-  return mesh;
+  return tumble::testing::torus_mesh(rings, sides, kMajor, kMinor);
 }
 
 /// Distance from a point to the analytic torus surface.
