@@ -137,16 +137,14 @@ class FfmpegSink final : public ImageSink {
   }
 
   void write(const Image& frame) override {
-    if (frame.width != options_.width || frame.height != options_.height) {
-      throw std::invalid_argument("video sink '" + target_.string() + "': frame is " +
-                                  std::to_string(frame.width) + "x" + std::to_string(frame.height) +
-                                  ", expected " + std::to_string(options_.width) + "x" +
-                                  std::to_string(options_.height));
-    }
-    if (!failure_.empty()) throw InputError(failure_);
-    if (finished_) throw std::logic_error("video sink '" + target_.string() + "' is closed");
-    if (pipe_broken()) fail();
+    check_writable(frame);
     queue_.push(frame, frames_);
+    ++frames_;
+  }
+
+  void write_taking(Image& frame) override {
+    check_writable(frame);
+    queue_.push_taking(frame.rgba, frames_);
     ++frames_;
   }
 
@@ -168,6 +166,20 @@ class FfmpegSink final : public ImageSink {
   std::size_t frames() const override { return frames_; }
 
  private:
+  void check_writable(const Image& frame) {
+    if (frame.width != options_.width || frame.height != options_.height ||
+        frame.rgba.size() !=
+            4 * static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height)) {
+      throw std::invalid_argument("video sink '" + target_.string() + "': frame is " +
+                                  std::to_string(frame.width) + "x" + std::to_string(frame.height) +
+                                  ", expected " + std::to_string(options_.width) + "x" +
+                                  std::to_string(options_.height));
+    }
+    if (!failure_.empty()) throw InputError(failure_);
+    if (finished_) throw std::logic_error("video sink '" + target_.string() + "' is closed");
+    if (pipe_broken()) fail();
+  }
+
   /// Starts ffmpeg reading raw RGBA on stdin, stderr captured, writing the temporary file.
   void spawn(SinkKind kind) {
     char size[64];

@@ -243,8 +243,18 @@ TEST(ImageSink, Mp4FramesAreUprightAndInOrder) {
   std::vector<Image> images;
   for (int i = 0; i < 6; ++i) images.push_back(asymmetric_frame(i));
   auto sink = open_image_sink(dir / "out.mp4", options());
-  for (const Image& image : images) sink->write(image);
+  // As `tumble render` writes: one image, drawn into again after each write_taking().
+  Image canvas;
+  for (const Image& image : images) {
+    canvas.width = image.width;
+    canvas.height = image.height;
+    canvas.rgba.resize(image.rgba.size());
+    std::copy(image.rgba.begin(), image.rgba.end(), canvas.rgba.begin());
+    sink->write_taking(canvas);
+    EXPECT_EQ(canvas.width, kWidth);
+  }
   sink->finish();
+  EXPECT_EQ(tumble::testing::probe_video(dir / "out.mp4"), "h264,96,64,6");
   for (int n : {0, 3}) {
     const auto decoded = dir / ("frame" + std::to_string(n) + ".png");
     const auto result = tumble::testing::run_command(
