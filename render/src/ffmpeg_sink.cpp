@@ -137,16 +137,14 @@ class FfmpegSink final : public ImageSink {
   }
 
   void write(const Image& frame) override {
-    if (frame.width != options_.width || frame.height != options_.height) {
-      throw std::invalid_argument("video sink '" + target_.string() + "': frame is " +
-                                  std::to_string(frame.width) + "x" + std::to_string(frame.height) +
-                                  ", expected " + std::to_string(options_.width) + "x" +
-                                  std::to_string(options_.height));
-    }
-    if (!failure_.empty()) throw InputError(failure_);
-    if (finished_) throw std::logic_error("video sink '" + target_.string() + "' is closed");
-    if (pipe_broken()) fail();
+    check_writable(frame);
     queue_.push(frame, frames_);
+    ++frames_;
+  }
+
+  void write_taking(Image& frame) override {
+    check_writable(frame);
+    queue_.push_taking(frame.rgba, frames_);
     ++frames_;
   }
 
@@ -168,6 +166,20 @@ class FfmpegSink final : public ImageSink {
   std::size_t frames() const override { return frames_; }
 
  private:
+  void check_writable(const Image& frame) {
+    if (frame.width != options_.width || frame.height != options_.height ||
+        frame.rgba.size() !=
+            4 * static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height)) {
+      throw std::invalid_argument("video sink '" + target_.string() + "': frame is " +
+                                  std::to_string(frame.width) + "x" + std::to_string(frame.height) +
+                                  ", expected " + std::to_string(options_.width) + "x" +
+                                  std::to_string(options_.height));
+    }
+    if (!failure_.empty()) throw InputError(failure_);
+    if (finished_) throw std::logic_error("video sink '" + target_.string() + "' is closed");
+    if (pipe_broken()) fail();
+  }
+
   /// Starts ffmpeg reading raw RGBA on stdin, stderr captured, writing the temporary file.
   void spawn(SinkKind kind) {
     char size[64];
@@ -206,6 +218,9 @@ class FfmpegSink final : public ImageSink {
       throw std::runtime_error(message);
     }
     child_ = child;
+    // A frame is ~3.7 MB at 720p: a 1 MiB pipe (the default is 64 KiB) takes it in 4 writes
+    // instead of ~56 wake-ups of ffmpeg's reader. Best effort; the default still works.
+    ::fcntl(in.write.get(), F_SETPIPE_SZ, 1 << 20);
     stdin_ = std::move(in.write);
     stderr_ = std::move(err.read);
     // The child's ends (in.read, err.write) close here, so ffmpeg sees EOF and we see its exit.

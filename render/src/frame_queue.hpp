@@ -44,6 +44,25 @@ class FrameQueue {
     return true;
   }
 
+  /// Moves a frame's pixels in without copying, waiting while the queue is full; `rgba` gets a
+  /// recycled buffer back (unspecified contents; empty until one is spare). False once closed.
+  bool push_taking(std::vector<std::uint8_t>& rgba, std::size_t index) {
+    {
+      std::unique_lock lock(mutex_);
+      not_full_.wait(lock, [&] { return closed_ || queued_.size() < capacity_; });
+      if (closed_) return false;
+      std::vector<std::uint8_t> spare;
+      if (!spare_.empty()) {
+        spare = std::move(spare_.back());
+        spare_.pop_back();
+      }
+      queued_.push_back({index, std::move(rgba)});
+      rgba = std::move(spare);
+    }
+    not_empty_.notify_one();
+    return true;
+  }
+
   /// Takes the oldest frame, waiting for one. Returns false when closed and drained.
   bool pop(Item& item) {
     std::unique_lock lock(mutex_);

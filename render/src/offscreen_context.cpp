@@ -200,19 +200,29 @@ void OffscreenContext::read_pixels(Image& out) {
                       GL_NEAREST);
     read_fbo = impl_->resolve.fbo.get();
   }
-  // Read bottom-up rows and flip them into top-down order.
+  // GL rows are bottom-up. Mesa's GL_MESA_pack_invert makes glReadPixels write them top-down
+  // straight into the image (no second buffer, no flipping copy); without it, read bottom-up
+  // and flip.
   const std::size_t row = 4 * static_cast<std::size_t>(width_);
   const std::size_t total = row * static_cast<std::size_t>(height_);
-  impl_->bottom_up.resize(total);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, read_fbo);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, impl_->bottom_up.data());
   out.width = width_;
   out.height = height_;
   out.rgba.resize(total);
-  for (int y = 0; y < height_; ++y) {
-    std::memcpy(out.rgba.data() + row * static_cast<std::size_t>(y),
-                impl_->bottom_up.data() + row * static_cast<std::size_t>(height_ - 1 - y), row);
+  while (glGetError() != GL_NO_ERROR) {
+  }
+  glPixelStorei(GL_PACK_INVERT_MESA, GL_TRUE);
+  if (glGetError() == GL_NO_ERROR) {
+    glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, out.rgba.data());
+    glPixelStorei(GL_PACK_INVERT_MESA, GL_FALSE);
+  } else {
+    impl_->bottom_up.resize(total);
+    glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, impl_->bottom_up.data());
+    for (int y = 0; y < height_; ++y) {
+      std::memcpy(out.rgba.data() + row * static_cast<std::size_t>(y),
+                  impl_->bottom_up.data() + row * static_cast<std::size_t>(height_ - 1 - y), row);
+    }
   }
   glBindFramebuffer(GL_FRAMEBUFFER, impl_->fbo(target_));
 }

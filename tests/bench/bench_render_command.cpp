@@ -66,7 +66,7 @@ void render_frames(benchmark::State& state, const std::string& output_name) {
     for (std::size_t frame = 0; frame < kFrames; ++frame) {
       job->advance_to(frame);
       job->draw(image);
-      if (sink) sink->write(image);
+      if (sink) sink->write_taking(image);
     }
     if (sink) sink->finish();
 

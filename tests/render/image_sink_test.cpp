@@ -208,5 +208,71 @@ TEST(ImageSink, WrongFrameSizeIsRejected) {
   std::filesystem::remove_all(dir);
 }
 
+/// A frame no flip or mirror maps onto itself: a dark background, a bright block in the
+/// top-left corner and a mid-grey bar along the bottom, each placed by frame number.
+Image asymmetric_frame(int index) {
+  Image image;
+  image.width = kWidth;
+  image.height = kHeight;
+  image.rgba.assign(4 * static_cast<std::size_t>(kWidth * kHeight), 0);
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      std::uint8_t* pixel = &image.rgba[4 * static_cast<std::size_t>(y * kWidth + x)];
+      std::uint8_t value = 20;
+      if (y < 24 && x >= 8 * index && x < 8 * index + 24) value = 230;  // top, moving right
+      if (y >= kHeight - 12) value = 128;                               // bottom bar
+      pixel[0] = pixel[1] = pixel[2] = value;
+      pixel[3] = 255;
+    }
+  }
+  return image;
+}
+
+Image flipped(const Image& image) {
+  Image out = image;
+  const std::size_t row = 4 * static_cast<std::size_t>(image.width);
+  for (int y = 0; y < image.height; ++y) {
+    std::copy_n(image.rgba.begin() + static_cast<std::ptrdiff_t>(row * y), row,
+                out.rgba.begin() + static_cast<std::ptrdiff_t>(row * (image.height - 1 - y)));
+  }
+  return out;
+}
+
+TEST(ImageSink, Mp4FramesAreUprightAndInOrder) {
+  const auto dir = tumble::testing::fresh_directory("mp4_upright");
+  std::vector<Image> images;
+  for (int i = 0; i < 6; ++i) images.push_back(asymmetric_frame(i));
+  auto sink = open_image_sink(dir / "out.mp4", options());
+  // As `tumble render` writes: one image, drawn into again after each write_taking().
+  Image canvas;
+  for (const Image& image : images) {
+    canvas.width = image.width;
+    canvas.height = image.height;
+    canvas.rgba.resize(image.rgba.size());
+    std::copy(image.rgba.begin(), image.rgba.end(), canvas.rgba.begin());
+    sink->write_taking(canvas);
+    EXPECT_EQ(canvas.width, kWidth);
+  }
+  sink->finish();
+  EXPECT_EQ(tumble::testing::probe_video(dir / "out.mp4"), "h264,96,64,6");
+  for (int n : {0, 3}) {
+    const auto decoded = dir / ("frame" + std::to_string(n) + ".png");
+    const auto result = tumble::testing::run_command(
+        "ffmpeg -v error -y -i '" + (dir / "out.mp4").string() + "' -vf 'select=eq(n\\," +
+        std::to_string(n) + ")' -vframes 1 '" + decoded.string() + "'");
+    ASSERT_EQ(result.status, 0) << result.err;
+    const Image frame = read_png(decoded);
+    ASSERT_EQ(frame.width, kWidth);
+    ASSERT_EQ(frame.height, kHeight);
+    const double error = testing::mean_difference(frame, images[n]);
+    EXPECT_LT(error, 4.0) << "frame " << n;
+    // Upside down, the bar and the block trade places: far more than the coding error.
+    EXPECT_GT(testing::mean_difference(frame, flipped(images[n])), 10.0 * error + 20.0);
+    // The block moves 8 px a frame: a neighbour is further off than the coding error.
+    EXPECT_LT(error, testing::mean_difference(frame, images[n + 1]));
+  }
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace tumble::render

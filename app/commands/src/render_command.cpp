@@ -56,7 +56,7 @@ int render_scene(const RenderOptions& options, const InterruptGuard& guard, std:
     job.advance_to(frame);
     if (frame < range.first) continue;
     job.draw(image);
-    sink->write(image);
+    sink->write_taking(image);  // the next draw fills a recycled buffer: no copy per frame
     bar.update(frame + 1 - range.first);
   }
   bar.clear();

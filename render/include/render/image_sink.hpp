@@ -58,6 +58,10 @@ class ImageSink {
   /// its last stderr lines; a PNG that could not be written), again on every later call, and
   /// std::logic_error once the sink is finished or abandoned.
   virtual void write(const Image& frame) = 0;
+  /// Like write(), but may take the frame's pixels instead of copying them: `frame` keeps its
+  /// size and gets a buffer of unspecified contents (possibly empty), ready to be drawn into
+  /// again. The video sinks take; the default copies.
+  virtual void write_taking(Image& frame) { write(frame); }
   /// Flushes, checks the encoder and moves the output to its final name. Throws
   /// tumble::InputError (one line naming the path, with ffmpeg's last stderr lines) on failure.
   /// Does nothing once finished (or failed).
