@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/frame/frame_builder.hpp"
+#include "frame_scene_setup.hpp"
 #include "render/camera_math.hpp"
 
 namespace tumble::app {
@@ -13,11 +14,6 @@ namespace {
 
 constexpr int kWidth = 80;
 constexpr int kHeight = 60;
-
-render::Renderer& fit_renderer() {
-  static render::Renderer renderer(render::RendererOptions{kWidth, kHeight, 1});
-  return renderer;
-}
 
 /// A free brick (inertia only, so its box has sides ~1 m) with long arrows, seen side-on from +x, 4
 /// m away, through a 20 degree field (0.7 m half-height).
@@ -30,14 +26,9 @@ constexpr const char* kCloseScene = R"({
 })";
 
 TEST(ArrowFit, TipsOutsideTheFrameAreShrunkIntoItAlongTheirDirection) {
-  const SceneDescription description =
-      parse_scene(kCloseScene, std::string(TUMBLE_SOURCE_DIR) + "/assets/scenes/test.json");
-  const CompiledScene scene = compile_scene(description, true);
-  RenderSettings settings = parse_render_settings(*description.render, "test.json", {"brick"});
-  settings.width = kWidth;
-  settings.height = kHeight;
-  const engine::Simulation simulation(scene.bodies, scene.initial, scene.settings);
-  FrameBuilder builder(description, scene, settings, fit_renderer());
+  const testing::FrameSceneSetup setup(kCloseScene, kWidth, kHeight);
+  const engine::Simulation simulation = setup.simulation();
+  FrameBuilder builder = setup.builder();
   builder.observe(simulation);
   const render::DrawList list = builder.build(simulation);
 
@@ -53,7 +44,8 @@ TEST(ArrowFit, TipsOutsideTheFrameAreShrunkIntoItAlongTheirDirection) {
     EXPECT_LE(tip.y(), static_cast<float>(kHeight));
   }
   // The L arrow still points along L.
-  const Eigen::Vector3f momentum = scene.initial[0].angular_momentum.cast<float>().normalized();
+  const Eigen::Vector3f momentum =
+      setup.scene.initial[0].angular_momentum.cast<float>().normalized();
   bool along_l = false;
   for (const render::Arrow& arrow : list.arrows) {
     along_l = along_l || (arrow.to - arrow.from).normalized().dot(momentum) > 0.9999f;

@@ -10,6 +10,7 @@
 
 #include "engine/mass_properties.hpp"
 #include "engine/primitive_meshes.hpp"
+#include "frame_scene_setup.hpp"
 #include "render/camera_math.hpp"
 #include "support/scene_builder.hpp"
 
@@ -21,35 +22,9 @@ using ::testing::HasSubstr;
 constexpr int kWidth = 64;
 constexpr int kHeight = 48;
 
-/// One small headless renderer for every test (a GL context per test would be slow).
-render::Renderer& test_renderer() {
-  static render::Renderer renderer(render::RendererOptions{kWidth, kHeight, 1});
-  return renderer;
-}
-
-/// A scene, compiled with its geometry, and the render settings read from its `render` object.
-struct SceneSetup {
-  SceneDescription description;
-  CompiledScene scene;
-  RenderSettings settings;
-
-  explicit SceneSetup(const std::string& text) {
-    description = parse_scene(text, std::string(TUMBLE_SOURCE_DIR) + "/assets/scenes/test.json");
-    scene = compile_scene(description, true);
-    std::vector<std::string> names;
-    for (const auto& body : description.bodies) names.push_back(body.name);
-    settings = parse_render_settings(description.render.value_or(nlohmann::json::object()),
-                                     "test.json", names);
-    settings.width = kWidth;
-    settings.height = kHeight;
-  }
-
-  engine::Simulation simulation() const {
-    return engine::Simulation(scene.bodies, scene.initial, scene.settings);
-  }
-  FrameBuilder builder() const {
-    return FrameBuilder(description, scene, settings, test_renderer());
-  }
+/// A scene drawn at the tests' frame size.
+struct SceneSetup : testing::FrameSceneSetup {
+  explicit SceneSetup(const std::string& text) : FrameSceneSetup(text, kWidth, kHeight) {}
 };
 
 /// An asymmetric brick spinning near its middle axis (it flips), given by its inertia only.

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/frame/frame_builder.hpp"
+#include "frame_scene_setup.hpp"
 #include "render/camera_math.hpp"
 
 namespace tumble::app {
@@ -16,25 +17,12 @@ constexpr int kWidth = 160;
 constexpr int kHeight = 120;
 
 render::Renderer& forces_renderer() {
-  static render::Renderer renderer(render::RendererOptions{kWidth, kHeight, 1});
-  return renderer;
+  return testing::frame_test_renderer(kWidth, kHeight);
 }
 
-struct ForcesScene {
-  SceneDescription description;
-  CompiledScene scene;
-  RenderSettings settings;
-
-  explicit ForcesScene(const std::string& text) {
-    description = parse_scene(text, std::string(TUMBLE_SOURCE_DIR) + "/assets/scenes/test.json");
-    scene = compile_scene(description, true);
-    std::vector<std::string> names;
-    for (const auto& body : description.bodies) names.push_back(body.name);
-    settings = parse_render_settings(description.render.value_or(nlohmann::json::object()),
-                                     "test.json", names);
-    settings.width = kWidth;
-    settings.height = kHeight;
-  }
+/// A scene drawn at this file's frame size.
+struct ForcesScene : testing::FrameSceneSetup {
+  explicit ForcesScene(const std::string& text) : FrameSceneSetup(text, kWidth, kHeight) {}
 };
 
 void advance_to(engine::Simulation& simulation, double time) {
