@@ -4,6 +4,7 @@
 
 #include "app/commands/exit_status.hpp"
 #include "command_line.hpp"
+#include "video_options_cli.hpp"
 
 namespace tumble::app {
 
@@ -21,7 +22,7 @@ CLI::App& add_view_command(CLI::App& cli, ViewOptions& options) {
       ->type_name("FILE");
   view.add_option_function<std::string>(
           "--size", [&](const std::string& value) { options.size = value; },
-          "Window size WxH in pixels (default 1280x720)")
+          "Window size WxH in pixels at the start (default 1280x720; the window is resizable)")
       ->type_name("WxH");
   view.add_option_function<std::string>(
           "--script", [&](const std::string& value) { options.script = value; },
@@ -43,6 +44,7 @@ CLI::App& add_view_command(CLI::App& cli, ViewOptions& options) {
           "--time-scale", [&](double value) { options.time_scale = value; },
           "Simulated seconds per real second (default 1)")
       ->type_name("S");
+  add_font_scale_option(view, options.font_scale);
   view.add_flag("--paused", options.paused, "Start paused");
   view.add_flag("--allow-overlap", options.allow_overlap,
                 "A mesh opened on its own may have overlapping parts (their shared volume "
