@@ -36,13 +36,13 @@ class RendererResize : public ::testing::TestWithParam<std::pair<int, Antialiasi
 
 TEST_P(RendererResize, DrawsWhatARendererOfTheNewSizeDraws) {
   const auto [samples, filter] = GetParam();
-  RendererOptions options{640, 360, samples, true, filter};
+  RendererOptions options{320, 180, samples, true, filter};
   Renderer resized(options);
   const MeshId box = resized.upload(testing::box_mesh({0.6f, 0.4f, 0.3f}));
   render_box(resized, box);  // a frame at the first size, so every pass has run once
   // Wider, then taller than wide, then back: each frame as a fresh renderer of that size.
   for (const auto& [width, height] :
-       std::vector<std::pair<int, int>>{{800, 300}, {270, 480}, {480, 270}, {640, 360}}) {
+       std::vector<std::pair<int, int>>{{400, 150}, {135, 240}, {320, 180}}) {
     resized.resize(width, height);
     ASSERT_EQ(resized.width(), width);
     ASSERT_EQ(resized.height(), height);

@@ -13,7 +13,8 @@ CLI::App& add_view_command(CLI::App& cli, ViewOptions& options) {
   view.footer(
       "Keys: Space play/pause, Right step, Backspace reset, - and = slower/faster, Ctrl+P "
       "screenshot, Ctrl+R record, Ctrl+O open, F1 help, Esc/Ctrl+Q quit. Drag to orbit, wheel "
-      "to zoom, drop a file to open it. Needs a display (X11; xvfb-run works). Exit status: 0, "
+      "to zoom, drop a file to open it. The window is resizable. Needs a display (X11; xvfb-run "
+      "works). Exit status: 0, "
       "1 for bad options or no display, 130 on Ctrl-C or SIGTERM (a recording in progress is "
       "discarded); scene and mesh errors show in the window.");
   view.add_option_function<std::string>(
@@ -27,7 +28,7 @@ CLI::App& add_view_command(CLI::App& cli, ViewOptions& options) {
   view.add_option_function<std::string>(
           "--script", [&](const std::string& value) { options.script = value; },
           "Timed key and mouse events to play (one `TIME VERB ARGS` per line: key, keydown, "
-          "keyup, type, move, click, press, release, drag, wheel, drop, screenshot, quit)")
+          "keyup, type, move, click, press, release, drag, wheel, drop, screenshot, resize, quit)")
       ->type_name("FILE");
   view.add_option_function<std::string>(
           "--output-dir", [&](const std::string& value) { options.output_dir = value; },
@@ -55,7 +56,7 @@ CLI::App& add_view_command(CLI::App& cli, ViewOptions& options) {
       ->type_name("S");
   view.add_flag("--stats", options.stats,
                 "On exit, print frames drawn, frames per second and the frame-time median and "
-                "95th percentile");
+                "95th percentile, then the last frame's window size, text size and panel width");
   return view;
 }
 
