@@ -247,6 +247,7 @@ class ViewerWindow {
   SdlWindow& window_;
   int width_;  ///< of the frames drawn
   int height_;
+  std::pair<int, int> refused_{0, 0};  ///< a window size the frames could not take
   render::Renderer renderer_;
   render::ImGuiLayer layer_;
   viewer::ImGuiInput imgui_input_;
@@ -344,11 +345,19 @@ bool ViewerWindow::follow_window_size() {
   if (!size) return false;
   const int width = std::min(size->first, kMaxImageSide);
   const int height = std::min(size->second, kMaxImageSide);
-  if (width == width_ && height == height_) return true;
-  // On a failure the frames keep their size, stretched over the window (the error is shown).
-  if (viewer_.resize(width, height) && window_.make_texture(width, height)) {
+  if ((width == width_ && height == height_) || std::pair{width, height} == refused_) return true;
+  // On a failure the frames keep their size, stretched over the window (the error is shown
+  // once: that size is not tried again).
+  if (!viewer_.resize(width, height)) {
+    refused_ = {width, height};
+  } else if (window_.make_texture(width, height)) {
     width_ = width;
     height_ = height;
+  } else {
+    viewer_.notify(std::string("resizing the window: ") + SDL_GetError(), true);
+    refused_ = {width, height};
+    viewer_.resize(width_, height_);
+    window_.make_texture(width_, height_);
   }
   return true;
 }
