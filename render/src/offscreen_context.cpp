@@ -81,6 +81,14 @@ std::optional<Framebuffer> make_framebuffer(int width, int height, int samples, 
   return made;
 }
 
+/// Throws std::invalid_argument for a size outside 1..16384.
+void check_size(int width, int height) {
+  if (width <= 0 || height <= 0 || width > 16384 || height > 16384) {
+    throw std::invalid_argument("offscreen context: invalid image size " + std::to_string(width) +
+                                "x" + std::to_string(height));
+  }
+}
+
 }  // namespace
 
 struct OffscreenContext::Impl {
@@ -100,10 +108,7 @@ struct OffscreenContext::Impl {
 
 OffscreenContext::OffscreenContext(int width, int height, int samples, bool post_process)
     : impl_(std::make_unique<Impl>()), width_(width), height_(height) {
-  if (width <= 0 || height <= 0 || width > 16384 || height > 16384) {
-    throw std::invalid_argument("offscreen context: invalid image size " + std::to_string(width) +
-                                "x" + std::to_string(height));
-  }
+  check_size(width, height);
   // llvmpipe reads its thread count at context creation; 2 is fastest on this class of machine.
   ::setenv("LP_NUM_THREADS", "2", /*overwrite=*/0);
 
@@ -131,30 +136,56 @@ OffscreenContext::OffscreenContext(int width, int height, int samples, bool post
     throw std::runtime_error("offscreen context: OSMesaMakeCurrent failed");
   }
 
-  // Multisampled draw FBO: clamp to GL_MAX_SAMPLES, halve until complete (never black frames).
   GLint max_samples = 1;
   glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
-  int wanted = std::clamp(samples, 1, std::max(1, static_cast<int>(max_samples)));
+  samples_ = std::clamp(samples, 1, std::max(1, static_cast<int>(max_samples)));
+  make_framebuffers(post_process);
+}
+
+void OffscreenContext::make_framebuffers(bool post_process) {
+  // Multisampled draw FBO: halve the samples until it is complete (never black frames).
+  int wanted = samples_;
   std::optional<Framebuffer> draw;
-  while (wanted > 1 && !(draw = make_framebuffer(width, height, wanted, /*with_depth=*/true))) {
+  while (wanted > 1 && !(draw = make_framebuffer(width_, height_, wanted, /*with_depth=*/true))) {
     wanted /= 2;
   }
+  Framebuffer resolve;
+  Framebuffer output;
   if (wanted > 1) {
-    std::optional<Framebuffer> resolve = make_framebuffer(width, height, 1, /*with_depth=*/false);
-    if (!resolve) throw std::runtime_error("offscreen context: resolve framebuffer is incomplete");
-    impl_->resolve = std::move(*resolve);
-  } else if (!(draw = make_framebuffer(width, height, 1, /*with_depth=*/true, post_process))) {
-    throw std::runtime_error("offscreen context: framebuffer " + std::to_string(width) + "x" +
-                             std::to_string(height) + " is incomplete");
+    std::optional<Framebuffer> made = make_framebuffer(width_, height_, 1, /*with_depth=*/false);
+    if (!made) throw std::runtime_error("offscreen context: resolve framebuffer is incomplete");
+    resolve = std::move(*made);
+  } else if (!(draw = make_framebuffer(width_, height_, 1, /*with_depth=*/true, post_process))) {
+    throw std::runtime_error("offscreen context: framebuffer " + std::to_string(width_) + "x" +
+                             std::to_string(height_) + " is incomplete");
   } else if (post_process) {
-    std::optional<Framebuffer> output = make_framebuffer(width, height, 1, /*with_depth=*/false);
-    if (!output) throw std::runtime_error("offscreen context: output framebuffer is incomplete");
-    impl_->output = std::move(*output);
+    std::optional<Framebuffer> made = make_framebuffer(width_, height_, 1, /*with_depth=*/false);
+    if (!made) throw std::runtime_error("offscreen context: output framebuffer is incomplete");
+    output = std::move(*made);
   }
   impl_->draw = std::move(*draw);
+  impl_->resolve = std::move(resolve);
+  impl_->output = std::move(output);
   samples_ = wanted;
-  glBindFramebuffer(GL_FRAMEBUFFER, impl_->draw.fbo.get());
-  glViewport(0, 0, width, height);
+  glBindFramebuffer(GL_FRAMEBUFFER, impl_->fbo(target_));
+  glViewport(0, 0, width_, height_);
+}
+
+void OffscreenContext::resize(int width, int height) {
+  check_size(width, height);
+  if (width == width_ && height == height_) return;
+  make_current();
+  const int old_width = std::exchange(width_, width);
+  const int old_height = std::exchange(height_, height);
+  try {
+    make_framebuffers(has_post_process());
+  } catch (...) {
+    // The old framebuffers are still there: keep drawing at the old size.
+    width_ = old_width;
+    height_ = old_height;
+    make_current();
+    throw;
+  }
 }
 
 OffscreenContext::~OffscreenContext() {

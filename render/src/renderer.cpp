@@ -93,6 +93,22 @@ void Renderer::with_context(const std::function<void()>& work) {
   work();
 }
 
+void Renderer::resize(int width, int height) {
+  OffscreenContext& context = impl_->context;
+  if (width == context.width() && height == context.height()) return;
+  const int old_width = context.width();
+  const int old_height = context.height();
+  context.resize(width, height);  // checks the size; keeps the old one when it throws
+  if (!impl_->fxaa) return;
+  try {
+    impl_->fxaa = std::make_unique<detail::FxaaPass>(width, height);
+  } catch (...) {
+    context.resize(old_width, old_height);  // the old pass still fits the old size
+    throw;
+  }
+  context.make_current();
+}
+
 int Renderer::width() const {
   return impl_->context.width();
 }

@@ -4,6 +4,15 @@
 
 namespace tumble::app {
 
+void add_font_scale_option(CLI::App& command, std::optional<double>& font_scale) {
+  command
+      .add_option_function<double>(
+          "--font-scale", [&](double value) { font_scale = value; },
+          "Overlay text size F times the frame's own (default 1: 13 px at 1280x720, proportional "
+          "to the frame, never under 10 px; 0.25 to 8)")
+      ->type_name("F");
+}
+
 void add_video_options(CLI::App& command, VideoOptions& options, const std::string& size_help) {
   command
       .add_option_function<std::string>(
@@ -37,12 +46,7 @@ void add_video_options(CLI::App& command, VideoOptions& options, const std::stri
           "--time-scale", [&](double value) { options.time_scale = value; },
           "Simulated seconds per second of video S (default 1; 0.5 is slow motion)")
       ->type_name("S");
-  command
-      .add_option_function<double>(
-          "--font-scale", [&](double value) { options.font_scale = value; },
-          "Overlay text size F times the frame's own (default 1: 13 px at 1280x720, proportional "
-          "to the frame, never under 10 px; 0.25 to 8)")
-      ->type_name("F");
+  add_font_scale_option(command, options.font_scale);
   command
       .add_option_function<std::string>(
           "--lod",

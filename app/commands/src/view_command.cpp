@@ -4,6 +4,7 @@
 
 #include "app/commands/exit_status.hpp"
 #include "command_line.hpp"
+#include "video_options_cli.hpp"
 
 namespace tumble::app {
 
@@ -12,7 +13,8 @@ CLI::App& add_view_command(CLI::App& cli, ViewOptions& options) {
   view.footer(
       "Keys: Space play/pause, Right step, Backspace reset, - and = slower/faster, Ctrl+P "
       "screenshot, Ctrl+R record, Ctrl+O open, F1 help, Esc/Ctrl+Q quit. Drag to orbit, wheel "
-      "to zoom, drop a file to open it. Needs a display (X11; xvfb-run works). Exit status: 0, "
+      "to zoom, drop a file to open it. The window is resizable. Needs a display (X11; xvfb-run "
+      "works). Exit status: 0, "
       "1 for bad options or no display, 130 on Ctrl-C or SIGTERM (a recording in progress is "
       "discarded); scene and mesh errors show in the window.");
   view.add_option_function<std::string>(
@@ -21,12 +23,12 @@ CLI::App& add_view_command(CLI::App& cli, ViewOptions& options) {
       ->type_name("FILE");
   view.add_option_function<std::string>(
           "--size", [&](const std::string& value) { options.size = value; },
-          "Window size WxH in pixels (default 1280x720)")
+          "Window size WxH in pixels at the start (default 1280x720; the window is resizable)")
       ->type_name("WxH");
   view.add_option_function<std::string>(
           "--script", [&](const std::string& value) { options.script = value; },
           "Timed key and mouse events to play (one `TIME VERB ARGS` per line: key, keydown, "
-          "keyup, type, move, click, press, release, drag, wheel, drop, screenshot, quit)")
+          "keyup, type, move, click, press, release, drag, wheel, drop, screenshot, resize, quit)")
       ->type_name("FILE");
   view.add_option_function<std::string>(
           "--output-dir", [&](const std::string& value) { options.output_dir = value; },
@@ -43,6 +45,7 @@ CLI::App& add_view_command(CLI::App& cli, ViewOptions& options) {
           "--time-scale", [&](double value) { options.time_scale = value; },
           "Simulated seconds per real second (default 1)")
       ->type_name("S");
+  add_font_scale_option(view, options.font_scale);
   view.add_flag("--paused", options.paused, "Start paused");
   view.add_flag("--allow-overlap", options.allow_overlap,
                 "A mesh opened on its own may have overlapping parts (their shared volume "
@@ -53,7 +56,7 @@ CLI::App& add_view_command(CLI::App& cli, ViewOptions& options) {
       ->type_name("S");
   view.add_flag("--stats", options.stats,
                 "On exit, print frames drawn, frames per second and the frame-time median and "
-                "95th percentile");
+                "95th percentile, then the last frame's window size, text size and panel width");
   return view;
 }
 

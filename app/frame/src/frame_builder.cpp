@@ -232,6 +232,12 @@ double FrameBuilder::reach() const {
   return impl_->rig.reach;
 }
 
+void FrameBuilder::set_frame(int width, int height, double font_scale) {
+  impl_->settings.width = width;
+  impl_->settings.height = height;
+  impl_->settings.font_scale = font_scale;
+}
+
 render::DrawList FrameBuilder::build(const engine::Simulation& simulation,
                                      const ShowSettings& show) const {
   const Impl& impl = *impl_;

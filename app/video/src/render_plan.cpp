@@ -58,14 +58,7 @@ RenderSettings render_settings(const RenderOptions& options, const SceneDescript
   }
   if (options.time_scale)
     settings.time_scale = positive_option(*options.time_scale, "--time-scale");
-  if (options.font_scale) {
-    if (!(*options.font_scale >= kMinFontScale && *options.font_scale <= kMaxFontScale)) {
-      throw InputError("--font-scale: expected a text scale from " + printf_number(kMinFontScale) +
-                       " to " + printf_number(kMaxFontScale) + ", got " +
-                       printf_number(*options.font_scale));
-    }
-    settings.font_scale = *options.font_scale;
-  }
+  if (options.font_scale) settings.font_scale = font_scale_option(*options.font_scale);
   if (options.antialiasing) {
     const std::optional<Antialiasing> parsed = antialiasing_from_text(*options.antialiasing);
     if (!parsed) {
@@ -111,6 +104,14 @@ std::size_t frame_count(double duration, double fps, double time_scale) {
 
 double frame_time(std::size_t frame, double fps, double time_scale) {
   return static_cast<double>(frame) * time_scale / fps;
+}
+
+double font_scale_option(double value) {
+  if (!(value >= kMinFontScale && value <= kMaxFontScale)) {
+    throw InputError("--font-scale: expected a text scale from " + printf_number(kMinFontScale) +
+                     " to " + printf_number(kMaxFontScale) + ", got " + printf_number(value));
+  }
+  return value;
 }
 
 std::pair<int, int> parse_frame_size(const std::string& text) {

@@ -112,6 +112,22 @@ void Viewer::apply(Shortcut shortcut) {
   }
 }
 
+bool Viewer::resize(int width, int height) {
+  if (width == renderer_.width() && height == renderer_.height()) return true;
+  if (recording()) {
+    stop_recording();
+    notify("recording stopped: the window was resized (a video keeps one frame size)");
+  }
+  try {
+    renderer_.resize(width, height);
+  } catch (const std::exception& error) {
+    notify(std::string("resizing the window: ") + error.what(), true);
+    return false;
+  }
+  session_.refit_frames();
+  return true;
+}
+
 void Viewer::update(double wall_seconds) {
   wall_seconds = std::max(wall_seconds, 0.0);
   clock_ += wall_seconds;

@@ -6,6 +6,7 @@
 #include <imgui_stdlib.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <optional>
 #include <string>
@@ -41,14 +42,23 @@ void body_combo(const char* label, float width, const std::vector<engine::BodyMo
   }
 }
 
+PanelRect panel_rect(int width, int height, float font_px) {
+  const float unit = font_px / render::kDefaultFontPx;
+  const float margin = std::round(10.0f * unit);
+  PanelRect rect;
+  rect.width = std::floor(std::min(kPanelWidth * unit, kMaxPanelShare * static_cast<float>(width)));
+  rect.x = static_cast<float>(width) - rect.width - margin;
+  rect.y = margin;
+  rect.height = std::max(static_cast<float>(height) - 2.0f * margin, 1.0f);
+  return rect;
+}
+
 void Panels::draw(Viewer& viewer, const FrameStats& stats, int width, int height) {
   sync(viewer);
   // At most 45 % of a small window's width; collapsible (click its title bar) to free the view.
-  const float panel_width = std::min(kPanelWidth, 0.45f * static_cast<float>(width));
-  const float panel_x = static_cast<float>(width) - panel_width - 10.0f;
-  ImGui::SetNextWindowPos(ImVec2(panel_x, 10.0f), ImGuiCond_Always);
-  ImGui::SetNextWindowSize(ImVec2(panel_width, static_cast<float>(height) - 20.0f),
-                           ImGuiCond_Always);
+  const PanelRect panel = panel_rect(width, height, ImGui::GetFontSize());
+  ImGui::SetNextWindowPos(ImVec2(panel.x, panel.y), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(panel.width, panel.height), ImGuiCond_Always);
   ImGui::Begin("tumble view", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
   simulation_section(viewer, stats);
   if (!viewer.session().empty()) {
@@ -62,8 +72,8 @@ void Panels::draw(Viewer& viewer, const FrameStats& stats, int width, int height
   files_section(viewer);
   ImGui::End();
 
-  notices_window(viewer, height);
-  if (viewer.help_shown) help_window(viewer, width, height);
+  notices_window(viewer, panel, height);
+  if (viewer.help_shown) help_window(viewer, panel, height);
 }
 
 void Panels::sync(const Viewer& viewer) {
@@ -110,7 +120,7 @@ void Panels::simulation_section(Viewer& viewer, const FrameStats& stats) {
   ImGui::TextColored(kDimColour, "%s", viewer.file().string().c_str());
   if (!ImGui::CollapsingHeader("Simulation", ImGuiTreeNodeFlags_DefaultOpen)) return;
 
-  if (ImGui::Button(session.paused() ? "Play" : "Pause", ImVec2(70, 0))) {
+  if (ImGui::Button(session.paused() ? "Play" : "Pause", ImVec2(scaled(70.0f), 0.0f))) {
     viewer.apply(Shortcut::kTogglePause);
   }
   ImGui::SameLine();
@@ -138,7 +148,7 @@ void Panels::integrator_section(Viewer& viewer) {
   if (!ImGui::CollapsingHeader("Integrator", ImGuiTreeNodeFlags_DefaultOpen)) return;
   const auto& catalog = engine::integrator_catalog();
   const std::string current = catalog[static_cast<std::size_t>(integrator_index_)].name;
-  ImGui::SetNextItemWidth(180.0f);
+  ImGui::SetNextItemWidth(scaled(180.0f));
   if (ImGui::BeginCombo("integrator", current.c_str())) {
     for (std::size_t i = 0; i < catalog.size(); ++i) {
       const bool selected = static_cast<int>(i) == integrator_index_;
@@ -151,10 +161,10 @@ void Panels::integrator_section(Viewer& viewer) {
   // dt from a list of round values, or typed.
   static constexpr double kStepChoices[] = {1e-4, 2e-4, 5e-4, 1e-3, 2e-3,
                                             5e-3, 1e-2, 2e-2, 5e-2, 0.1};
-  ImGui::SetNextItemWidth(100.0f);
+  ImGui::SetNextItemWidth(scaled(100.0f));
   ImGui::InputDouble("##dt", &dt_, 0.0, 0.0, "%.6g");
   ImGui::SameLine();
-  ImGui::SetNextItemWidth(72.0f);
+  ImGui::SetNextItemWidth(scaled(72.0f));
   if (ImGui::BeginCombo("dt (s)", "list", ImGuiComboFlags_None)) {
     for (double choice : kStepChoices) {
       char label[32];
@@ -208,10 +218,13 @@ void Panels::files_section(Viewer& viewer) {
   if (ImGui::Button("Help (F1)")) viewer.help_shown = !viewer.help_shown;
 }
 
-void Panels::help_window(Viewer& viewer, int width, int height) {
-  ImGui::SetNextWindowPos(ImVec2(0.5f * static_cast<float>(width) - kPanelWidth / 2.0f,
-                                 0.5f * static_cast<float>(height)),
+void Panels::help_window(Viewer& viewer, const PanelRect& panel, int height) {
+  // Centred in the view left of the panel; in a small window it scrolls rather than overflows.
+  const float margin = panel.y;
+  ImGui::SetNextWindowPos(ImVec2(0.5f * panel.x, 0.5f * static_cast<float>(height)),
                           ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+  ImGui::SetNextWindowSizeConstraints(
+      ImVec2(0.0f, 0.0f), ImVec2(std::max(panel.x - 2.0f * margin, 1.0f), panel.height));
   ImGui::SetNextWindowBgAlpha(0.92f);
   bool open = true;
   ImGui::Begin(
@@ -225,15 +238,19 @@ void Panels::help_window(Viewer& viewer, int width, int height) {
   if (!open) viewer.help_shown = false;
 }
 
-void Panels::notices_window(Viewer& viewer, int height) {
+void Panels::notices_window(Viewer& viewer, const PanelRect& panel, int height) {
   const auto& notices = viewer.notices();
   if (notices.empty()) return;
-  ImGui::SetNextWindowPos(ImVec2(10.0f, static_cast<float>(height) - 10.0f), ImGuiCond_Always,
+  // Bottom left, its lines wrapped before the control panel.
+  const float margin = panel.y;
+  ImGui::SetNextWindowPos(ImVec2(margin, static_cast<float>(height) - margin), ImGuiCond_Always,
                           ImVec2(0.0f, 1.0f));
   ImGui::SetNextWindowBgAlpha(0.85f);
   ImGui::Begin("notices", nullptr,
                ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_AlwaysAutoResize |
                    ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoFocusOnAppearing);
+  ImGui::PushTextWrapPos(
+      std::max(panel.x - 2.0f * margin - ImGui::GetStyle().WindowPadding.x, scaled(100.0f)));
   std::optional<std::size_t> dismissed;
   for (std::size_t i = 0; i < notices.size(); ++i) {
     const Notice& notice = notices[i];
@@ -247,6 +264,7 @@ void Panels::notices_window(Viewer& viewer, int height) {
     }
     ImGui::PopID();
   }
+  ImGui::PopTextWrapPos();
   ImGui::End();
   if (dismissed) viewer.dismiss_notice(*dismissed);
 }

@@ -94,7 +94,8 @@ void Panels::inspector_section(Viewer& viewer) {
     report_body_ = body;
   }
   const std::string& report = report_;
-  ImGui::BeginChild("report", ImVec2(0, 220), true, ImGuiWindowFlags_HorizontalScrollbar);
+  ImGui::BeginChild("report", ImVec2(0.0f, scaled(220.0f)), true,
+                    ImGuiWindowFlags_HorizontalScrollbar);
   ImGui::TextUnformatted(report.c_str());
   ImGui::EndChild();
 }
@@ -106,14 +107,14 @@ void Panels::plots_section(Viewer& viewer) {
   ImGui::TextColored(kDimColour, "relative drift of the invariants");
   plot({{"energy", &history.energy_drift, IM_COL32(250, 200, 60, 255)},
         {"|L|", &history.momentum_drift, IM_COL32(200, 140, 255, 255)}},
-       60.0f);
+       scaled(60.0f));
   const auto& bodies = session.compiled().bodies;
   ImGui::TextColored(kDimColour, "w of %s in its body frame (rad/s)",
                      bodies[std::min(session.plotted_body(), bodies.size() - 1)].name.c_str());
   plot({{"x", &history.omega[0], IM_COL32(240, 90, 80, 255)},
         {"y", &history.omega[1], IM_COL32(100, 220, 100, 255)},
         {"z", &history.omega[2], IM_COL32(100, 150, 255, 255)}},
-       80.0f);
+       scaled(80.0f));
   if (viewer.selected_body != session.plotted_body())
     session.set_plotted_body(viewer.selected_body);
 }

@@ -53,7 +53,7 @@ void omega_and_orientation(Viewer& viewer, std::size_t body, VectorFrame& omega_
 
 /// Presets: spin about a principal axis at `rate`, with a small perturbation.
 void principal_spin_presets(Viewer& viewer, std::size_t body, double& rate) {
-  ImGui::SetNextItemWidth(120.0f);
+  ImGui::SetNextItemWidth(scaled(120.0f));
   ImGui::InputDouble("rate (rad/s)", &rate, 0.0, 0.0, "%.4g");
   static constexpr const char* kPresetNames[3] = {"axis 1 (min)", "axis 2 (mid)", "axis 3 (max)"};
   for (int axis = 0; axis < 3; ++axis) {
@@ -75,9 +75,9 @@ void principal_spin_presets(Viewer& viewer, std::size_t body, double& rate) {
 
 /// A top's tilt and spin, and their Apply.
 void top_fields(Viewer& viewer, std::size_t body, double& tilt_deg, double& spin) {
-  ImGui::SetNextItemWidth(120.0f);
+  ImGui::SetNextItemWidth(scaled(120.0f));
   ImGui::InputDouble("tilt (deg)", &tilt_deg, 0.0, 0.0, "%.3g");
-  ImGui::SetNextItemWidth(120.0f);
+  ImGui::SetNextItemWidth(scaled(120.0f));
   ImGui::InputDouble("spin (rad/s)", &spin, 0.0, 0.0, "%.4g");
   if (!ImGui::Button("Apply top")) return;
   if (!std::isfinite(tilt_deg) || !std::isfinite(spin)) {
@@ -95,7 +95,7 @@ void top_fields(Viewer& viewer, std::size_t body, double& tilt_deg, double& spin
 void Panels::initial_state_section(Viewer& viewer) {
   if (!ImGui::CollapsingHeader("Initial state")) return;
   const auto& bodies = viewer.session().compiled().bodies;
-  if (bodies.size() > 1) body_combo("body", 180.0f, bodies, viewer.selected_body);
+  if (bodies.size() > 1) body_combo("body", scaled(180.0f), bodies, viewer.selected_body);
   const std::size_t body = std::min(viewer.selected_body, bodies.size() - 1);
   omega_and_orientation(viewer, body, omega_frame_, omega_, ypr_deg_);
   principal_spin_presets(viewer, body, preset_rate_);

@@ -12,19 +12,19 @@ void Panels::show_section(Viewer& viewer) {
   if (!ImGui::CollapsingHeader("Show")) return;
   ShowSettings& show = session.show();
   ImGui::Checkbox("bodies", &show.bodies);
-  ImGui::SameLine(180.0f);
+  ImGui::SameLine(scaled(180.0f));
   ImGui::Checkbox("ground", &show.ground);
   ImGui::Checkbox("body axes", &show.body_axes);
-  ImGui::SameLine(180.0f);
+  ImGui::SameLine(scaled(180.0f));
   ImGui::Checkbox("principal axes", &show.principal_axes);
   ImGui::Checkbox("w arrow", &show.angular_velocity);
-  ImGui::SameLine(180.0f);
+  ImGui::SameLine(scaled(180.0f));
   ImGui::Checkbox("L arrow", &show.angular_momentum);
   ImGui::Checkbox("trails", &session.show_trails());
-  ImGui::SameLine(180.0f);
+  ImGui::SameLine(scaled(180.0f));
   ImGui::Checkbox("inertia ellipsoid", &show.inertia_ellipsoid);
   ImGui::Checkbox("polhode", &show.polhode);
-  ImGui::SameLine(180.0f);
+  ImGui::SameLine(scaled(180.0f));
   ImGui::Checkbox("herpolhode", &show.herpolhode);
   ImGui::Checkbox("overlay and plots", &show.overlay);
 }
@@ -35,7 +35,7 @@ void Panels::camera_section(Viewer& viewer) {
   ImGui::Checkbox("follow", &viewer.follow);
   if (bodies.size() > 1) {
     ImGui::SameLine();
-    body_combo("##follow", 160.0f, bodies, viewer.follow_body);
+    body_combo("##follow", scaled(160.0f), bodies, viewer.follow_body);
   }
   if (ImGui::Button("Reset camera")) viewer.reset_camera();
   const OrbitCamera& camera = viewer.camera();

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <system_error>
 
+#include "app/scene/render_settings.hpp"
 #include "app/support/text_file.hpp"
 #include "app/viewer/viewer_input.hpp"
 #include "engine/input_error.hpp"
@@ -23,7 +24,8 @@ constexpr double kDragSeconds = 0.2;
 constexpr int kDragMoves = 10;
 
 constexpr const char* kVerbs =
-    "key, keydown, keyup, type, move, click, press, release, drag, wheel, drop, screenshot or quit";
+    "key, keydown, keyup, type, move, click, press, release, drag, wheel, drop, screenshot, "
+    "resize or quit";
 
 bool is_blank(char c) {
   return std::isspace(static_cast<unsigned char>(c)) != 0;
@@ -89,6 +91,17 @@ class LineReader {
     const std::optional<double> value = text ? to_number(*text) : std::nullopt;
     if (!value || !std::isfinite(*value)) fail("a number for " + name, text);
     return *value;
+  }
+
+  /// The next word as a whole number of pixels from 1 to kMaxImageSide; `name` says which side.
+  int pixels(const std::string& name) {
+    const std::optional<std::string> text = word();
+    const std::optional<double> value = text ? to_number(*text) : std::nullopt;
+    if (!value || !(*value >= 1.0 && *value <= kMaxImageSide) || std::floor(*value) != *value) {
+      fail("a whole number of pixels from 1 to " + std::to_string(kMaxImageSide) + " for " + name,
+           text);
+    }
+    return static_cast<int>(*value);
   }
 
   /// The optional BUTTON word ending a mouse step (left when absent).
@@ -220,6 +233,13 @@ void parse_action(LineReader& line, const std::string& verb, double time,
   }
   if (verb == "drag") {
     parse_drag(line, time, steps);
+    return;
+  }
+  if (verb == "resize") {
+    const int width = line.pixels("W");
+    const int height = line.pixels("H");
+    line.finish("resize W H");
+    steps.push_back({time, ResizeRequest{width, height}});
     return;
   }
   if (verb == "quit") {

@@ -4,14 +4,13 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <sstream>
 #include <utility>
 
-#include "app/scene/mesh_inspection.hpp"
 #include "app/support/printf_number.hpp"
 #include "app/viewer/viewer_initial_state.hpp"
 #include "engine/input_error.hpp"
 #include "engine/integrators.hpp"
+#include "render/overlay_layout.hpp"
 
 namespace tumble::app::viewer {
 namespace {
@@ -192,6 +191,7 @@ void Session::rebuild(const std::vector<RunSpec>& specs) {
   // placement follow what is drawn.
   builder_settings.width = renderer_.width();
   builder_settings.height = renderer_.height();
+  builder_settings.font_scale = font_scale();
   // Everything the toggles can show is prepared, so that they work at any time without a
   // rebuild: the paths' histories (cheap) and the inertia ellipsoid's mesh. (The paths are
   // kept unscaled, so they follow the w arrow's scale, which the ellipsoid changes.)
@@ -220,6 +220,20 @@ void Session::rebuild(const std::vector<RunSpec>& specs) {
   history_ = History{};
   drift_ = InvariantDrift(compiled_.bodies, compiled_.initial);
   record_history();
+}
+
+double Session::font_scale() const {
+  return font_scale_ ? *font_scale_ : render_settings_.font_scale;
+}
+
+void Session::set_font_scale(std::optional<double> scale) {
+  font_scale_ = scale;
+  refit_frames();
+}
+
+void Session::refit_frames() {
+  for (Run& run : runs_)
+    run.builder->set_frame(renderer_.width(), renderer_.height(), font_scale());
 }
 
 void Session::set_time_scale(double scale) {
@@ -359,10 +373,14 @@ render::DrawList Session::frame(const render::Camera& camera) {
   if (runs_.size() == 1) return list;
 
   // Runs beside the first: their bodies, translucent, in their colours, and a legend.
+  // The legend at the bottom left, its text and size following the frame as the overlay's do.
   render::OverlayPanel legend;
   legend.title = "runs";
-  legend.width_px = 300.0f;
-  legend.position_px = Eigen::Vector2f(12.0f, static_cast<float>(renderer_.height()) - 140.0f);
+  legend.font_px = render::overlay_font_px(renderer_.width(), renderer_.height(), font_scale());
+  const float unit = legend.font_px / render::kDefaultFontPx;
+  legend.width_px = std::min(300.0f * unit, 0.5f * static_cast<float>(renderer_.width()));
+  legend.position_px = Eigen::Vector2f(
+      12.0f * unit, std::max(0.0f, static_cast<float>(renderer_.height()) - 140.0f * unit));
   legend.lines.push_back("solid: " + runs_.front().integrator +
                          ", dt = " + printf_number(runs_.front().dt, "%g") + " s");
   ShowSettings bodies_only;
@@ -414,28 +432,6 @@ void Session::record_history() {
     trim(history_.momentum_drift, kHistoryLength);
     for (auto& values : history_.omega) trim(values, kHistoryLength);
   }
-}
-
-std::string Session::inspector_text(std::size_t body) const {
-  if (body >= compiled_.bodies.size()) return {};
-  if (body < compiled_.reports.size() && compiled_.reports[body]) {
-    return format_report(*compiled_.reports[body]);
-  }
-  const engine::BodyModel& model = compiled_.bodies[body];
-  std::ostringstream text;
-  text << model.name << ": inertia given in the scene\n"
-       << "mass              " << printf_number(model.mass, "%.6g") << " kg\n"
-       << "principal moments " << printf_number(model.moments[0], "%.6g") << ", "
-       << printf_number(model.moments[1], "%.6g") << ", " << printf_number(model.moments[2], "%.6g")
-       << " kg m^2" << (model.pivoted ? " (about the pivot)" : "") << "\n";
-  return text.str();
-}
-
-std::vector<std::string> Session::inspector_warnings(std::size_t body) const {
-  if (body < compiled_.reports.size() && compiled_.reports[body]) {
-    return compiled_.reports[body]->warnings;
-  }
-  return {};
 }
 
 }  // namespace tumble::app::viewer

@@ -12,6 +12,11 @@
 //   exactly as real ones.
 // - The simulation steps on the wall clock (Session::advance), so a slow frame shows less
 //   often, not slower physics.
+// - The window is resizable: each frame reads the renderer's output size, and a new size goes
+//   to Viewer::resize (the off-screen framebuffers, hence the GL viewport and the camera's
+//   aspect, and the overlay), the streaming texture and ImGui (display size, text and spacing
+//   from render::overlay_font_px at the session's font scale). While the window is minimised
+//   (or has no pixels) nothing is drawn; the simulation keeps its clock.
 // - SIGINT and SIGTERM are caught by an InterruptGuard that the frame loop polls, not by SDL
 //   (which would turn them into a quit, and a quit finishes a recording): an interrupted
 //   viewer discards the recording in progress and exits with 130.
@@ -37,6 +42,7 @@
 #include "app/viewer/viewer_panels.hpp"
 #include "engine/input_error.hpp"
 #include "render/imgui_layer.hpp"
+#include "render/overlay_layout.hpp"
 #include "render/renderer.hpp"
 #include "sdl_input.hpp"
 
@@ -81,27 +87,53 @@ struct SdlDestroy {
 /// SDL's window, software renderer and streaming texture, released in reverse order, then SDL.
 class SdlWindow {
  public:
-  /// Opens a `width` x `height` window taking dropped files and text input; false when any
-  /// part fails (SDL_GetError says why).
+  static constexpr int kMinWidth = 320;
+  static constexpr int kMinHeight = 180;
+
+  /// Opens a resizable `width` x `height` window taking dropped files and text input; false
+  /// when any part fails (SDL_GetError says why).
   bool open(int width, int height) {
     if (!video_.start()) return false;
     window_.reset(SDL_CreateWindow("tumble view", SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED,
-                                   width, height, SDL_WINDOW_SHOWN));
+                                   width, height, SDL_WINDOW_SHOWN | SDL_WINDOW_RESIZABLE));
     if (window_) renderer_.reset(SDL_CreateRenderer(window_.get(), -1, SDL_RENDERER_SOFTWARE));
-    if (renderer_) {
-      // RGBA bytes in memory, as the renderer hands them back.
-      texture_.reset(SDL_CreateTexture(renderer_.get(), SDL_PIXELFORMAT_ABGR8888,
-                                       SDL_TEXTUREACCESS_STREAMING, width, height));
-    }
-    if (!texture_) return false;
+    if (!renderer_ || !make_texture(width, height)) return false;
+    // Smaller than this and the panel's text no longer fits (unless --size asked for less).
+    SDL_SetWindowMinimumSize(window_.get(), std::min(width, kMinWidth),
+                             std::min(height, kMinHeight));
     SDL_EventState(SDL_DROPFILE, SDL_ENABLE);
     SDL_StartTextInput();
     return true;
   }
 
-  /// Shows a frame of the window's size.
-  void show(const render::Image& image, int width) {
-    SDL_UpdateTexture(texture_.get(), nullptr, image.rgba.data(), 4 * width);
+  /// A `width` x `height` streaming texture for the frames (RGBA bytes in memory, as the
+  /// renderer hands them back); false when SDL cannot make it.
+  bool make_texture(int width, int height) {
+    texture_.reset(SDL_CreateTexture(renderer_.get(), SDL_PIXELFORMAT_ABGR8888,
+                                     SDL_TEXTUREACCESS_STREAMING, width, height));
+    return texture_ != nullptr;
+  }
+
+  /// The pixels the window shows now, or nothing while it is minimised, hidden or empty.
+  std::optional<std::pair<int, int>> drawable_size() const {
+    if ((SDL_GetWindowFlags(window_.get()) & (SDL_WINDOW_MINIMIZED | SDL_WINDOW_HIDDEN)) != 0) {
+      return std::nullopt;
+    }
+    int width = 0;
+    int height = 0;
+    if (SDL_GetRendererOutputSize(renderer_.get(), &width, &height) != 0) return std::nullopt;
+    if (width <= 0 || height <= 0) return std::nullopt;
+    return std::pair{width, height};
+  }
+
+  /// Asks the window system for a `width` x `height` window (a script's resize); the new size
+  /// arrives like a user's resize.
+  void request_size(int width, int height) { SDL_SetWindowSize(window_.get(), width, height); }
+
+  /// Shows a frame, stretched over the window when their sizes differ.
+  void show(const render::Image& image) {
+    if (!texture_) return;
+    SDL_UpdateTexture(texture_.get(), nullptr, image.rgba.data(), 4 * image.width);
     SDL_RenderCopy(renderer_.get(), texture_.get(), nullptr, nullptr);
     SDL_RenderPresent(renderer_.get());
   }
@@ -161,6 +193,7 @@ WindowPlan checked_options(const ViewOptions& options) {
   if (options.script) plan.script = viewer::load_script(*options.script);
   if (options.dt) positive_option(*options.dt, "--dt");
   if (options.time_scale) positive_option(*options.time_scale, "--time-scale");
+  if (options.font_scale) font_scale_option(*options.font_scale);
   if (options.exit_after) positive_option(*options.exit_after, "--exit-after");
   if (options.integrator) {
     SceneDescription unused;
@@ -204,13 +237,17 @@ class ViewerWindow {
  private:
   /// Feeds the window's events, then the script's steps due, to ImGui and the viewer.
   void handle_input(double since_start);
+  /// Follows the window's size (Viewer::resize, the texture); false while it shows nothing
+  /// (minimised), when no frame is drawn.
+  bool follow_window_size();
   /// Steps the simulation by `wall` seconds, draws the frame with the panels and shows it.
   void draw_frame(double wall);
 
   const ViewOptions& options_;
   SdlWindow& window_;
-  const int width_;
-  const int height_;
+  int width_;  ///< of the frames drawn
+  int height_;
+  std::pair<int, int> refused_{0, 0};  ///< a window size the frames could not take
   render::Renderer renderer_;
   render::ImGuiLayer layer_;
   viewer::ImGuiInput imgui_input_;
@@ -236,6 +273,7 @@ ViewerWindow::ViewerWindow(const ViewOptions& options, SdlWindow& window, Window
       player_(std::move(plan.script)) {
   ImGui::SetCurrentContext(layer_.context());
   viewer::configure_imgui_keys(ImGui::GetIO());
+  viewer_.session().set_font_scale(options.font_scale);
   const std::optional<std::filesystem::path> file =
       options.file ? options.file : default_view_scene();
   if (file) {
@@ -260,8 +298,13 @@ bool ViewerWindow::run(const InterruptGuard& guard) {
     // A quit still draws this frame, so screenshots asked for with it are written.
     const bool last_frame =
         viewer_.quit_requested() || (options_.exit_after && since_start >= *options_.exit_after);
-    draw_frame(wall);
-    frame_clock_.add(seconds_between(now, Clock::now()));
+    if (follow_window_size()) {
+      draw_frame(wall);
+      frame_clock_.add(seconds_between(now, Clock::now()));
+    } else {
+      viewer_.update(wall);  // minimised: the clock goes on, nothing is drawn
+      SDL_Delay(20);
+    }
     if (last_frame) break;
   }
   if (guard.interrupted()) return false;  // came with the last frame: still not a quit
@@ -284,6 +327,8 @@ void ViewerWindow::handle_input(double since_start) {
   for (viewer::ScriptStep& step : player_.due(since_start)) {
     if (auto* input = std::get_if<InputEvent>(&step.action)) {
       events.push_back(std::move(*input));
+    } else if (const auto* resize = std::get_if<viewer::ResizeRequest>(&step.action)) {
+      window_.request_size(resize->width, resize->height);
     } else {
       viewer_.request_screenshot(std::get<viewer::ScreenshotRequest>(step.action).path);
     }
@@ -293,6 +338,28 @@ void ViewerWindow::handle_input(double since_start) {
     imgui_input_.feed(io, input);
     viewer_.handle(input, io.WantCaptureKeyboard, io.WantCaptureMouse);
   }
+}
+
+bool ViewerWindow::follow_window_size() {
+  const std::optional<std::pair<int, int>> size = window_.drawable_size();
+  if (!size) return false;
+  const int width = std::min(size->first, kMaxImageSide);
+  const int height = std::min(size->second, kMaxImageSide);
+  if ((width == width_ && height == height_) || std::pair{width, height} == refused_) return true;
+  // On a failure the frames keep their size, stretched over the window (the error is shown
+  // once: that size is not tried again).
+  if (!viewer_.resize(width, height)) {
+    refused_ = {width, height};
+  } else if (window_.make_texture(width, height)) {
+    width_ = width;
+    height_ = height;
+  } else {
+    viewer_.notify(std::string("resizing the window: ") + SDL_GetError(), true);
+    refused_ = {width, height};
+    viewer_.resize(width_, height_);
+    window_.make_texture(width_, height_);
+  }
+  return true;
 }
 
 void ViewerWindow::draw_frame(double wall) {
@@ -307,12 +374,13 @@ void ViewerWindow::draw_frame(double wall) {
   // The panels may start a recording while they are drawn: ask once, before the frame.
   const render::DrawList list = viewer_.frame();
   render::Image* const scene = viewer_.wants_scene_image() ? &scene_image_ : nullptr;
+  layer_.set_font_px(render::overlay_font_px(width_, height_, viewer_.session().font_scale()));
   const render::ExtraPass pass = layer_.pass(
       static_cast<float>(wall), [&] { panels_.draw(viewer_, stats, width_, height_); },
       [&] { imgui_input_.end_frame(ImGui::GetIO()); }, scene);
   renderer_.render(list, window_image_, pass);
   viewer_.frame_drawn(scene, window_image_);
-  window_.show(window_image_, width_);
+  window_.show(window_image_);
 }
 
 void ViewerWindow::report(std::ostream& out, std::ostream& err) const {
@@ -324,6 +392,10 @@ void ViewerWindow::report(std::ostream& out, std::ostream& err) const {
         << median << " ms, 95th percentile " << p95 << " ms; real-time factor "
         << (played_wall_ > 0.0 ? played_simulated_ / played_wall_ : 0.0) << " at time scale "
         << viewer_.session().time_scale() << "\n";
+    // The layout of the last frame: what the window shows, its text and the control panel.
+    out << "tumble view: window " << width_ << "x" << height_ << ", text " << layer_.font_px()
+        << " px, control panel " << viewer::panel_rect(width_, height_, layer_.font_px()).width
+        << " px wide\n";
   }
   // Errors still shown when the window closed go to the terminal too.
   for (const viewer::Notice& notice : viewer_.notices()) {

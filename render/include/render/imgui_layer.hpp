@@ -5,11 +5,13 @@
 // widgets in the callback given to pass().
 
 #include <functional>
+#include <memory>
 
 #include "render/image.hpp"
 #include "render/renderer.hpp"
 
 struct ImGuiContext;
+struct ImGuiStyle;
 
 namespace tumble::render {
 
@@ -25,6 +27,14 @@ class ImGuiLayer {
 
   ImGuiContext* context() const { return context_; }
 
+  /// Text height of the next passes, in pixels (13 at first): the default font rasterised at
+  /// that size (not a scaled bitmap) and every spacing of the style scaled by px / 13, as the
+  /// render overlay does. Takes effect at the next pass's frame (the font atlas is rebuilt
+  /// there, before ImGui::NewFrame); rounded to whole pixels within [kMinFontPx, kMaxFontPx].
+  void set_font_px(float px);
+  /// The text height the passes use now.
+  float font_px() const { return font_px_; }
+
   /// A pass for Renderer::render: one ImGui frame of `delta_seconds` over the frame, with
   /// `build` called between ImGui::NewFrame() and ImGui::Render(), then `after_new_frame` hooks
   /// (input latches) run right after NewFrame. `before` receives the frame without the layer.
@@ -32,8 +42,14 @@ class ImGuiLayer {
                  std::function<void()> after_new_frame = {}, Image* before = nullptr);
 
  private:
+  /// Rebuilds the font atlas at wanted_px_ and scales the style (GL context current).
+  void apply_font_size();
+
   Renderer& renderer_;
   ImGuiContext* context_ = nullptr;
+  std::unique_ptr<ImGuiStyle> base_style_;
+  float font_px_ = 13.0f;    ///< of the atlas
+  float wanted_px_ = 13.0f;  ///< for the next frame
 };
 
 }  // namespace tumble::render

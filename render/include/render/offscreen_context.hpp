@@ -39,6 +39,11 @@ class OffscreenContext {
   /// Resolves multisampling (if any) and reads the target's pixels back, row 0 at the top.
   void read_pixels(Image& out);
 
+  /// Replaces the framebuffers with `width` x `height` ones (same samples, same post-process),
+  /// in the same GL context, so uploaded meshes and programs stay. Throws like the constructor;
+  /// on a failure the old size and framebuffers stay.
+  void resize(int width, int height);
+
   /// The scene FBO's colour texture (0 without a post-process).
   unsigned int scene_texture() const;
   /// True when there is a separate output FBO for a post-process.
@@ -53,6 +58,9 @@ class OffscreenContext {
   int samples() const { return samples_; }
 
  private:
+  /// (Re)creates the framebuffers at width_ x height_ with up to samples_ samples.
+  void make_framebuffers(bool post_process);
+
   struct Impl;
   std::unique_ptr<Impl> impl_;
   int width_;

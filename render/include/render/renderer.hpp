@@ -104,6 +104,13 @@ class Renderer {
   /// GL objects of their own, such as an ImGui backend, in this context).
   void with_context(const std::function<void()>& work);
 
+  /// Draws later frames at `width` x `height` (the viewer's window was resized): the
+  /// framebuffers (and the post-process's) are made again at that size in the same context, so
+  /// uploaded meshes stay valid; the projection's aspect follows the new size. Throws
+  /// std::invalid_argument for a size outside 1..16384 and std::runtime_error when the new
+  /// framebuffers cannot be made (the renderer then keeps its old size).
+  void resize(int width, int height);
+
   int width() const;
   int height() const;
   /// Samples per pixel actually used.

@@ -129,6 +129,29 @@ TEST_F(ViewerPanels, TheControlPanelFillsTheRightEdgeBelowAMargin) {
   EXPECT_FLOAT_EQ(panel->Size.y, kHeight - 20.0f);
 }
 
+TEST_F(ViewerPanels, ThePanelFollowsTheTextSize) {
+  // 20 px text (a 1920x1080 window's): 360 x 20 / 13 = 553 px wide would pass 45 % of the
+  // 1024 px width, so the panel is 460 px; margins round(10 x 20 / 13) = 15 px.
+  ImGuiIO& io = ImGui::GetIO();
+  io.Fonts->Clear();
+  ImFontConfig config;
+  config.SizePixels = 20.0f;
+  io.FontDefault = io.Fonts->AddFontDefault(&config);
+  unsigned char* pixels = nullptr;
+  int width = 0;
+  int height = 0;
+  io.Fonts->GetTexDataAsRGBA32(&pixels, &width, &height);
+  open_brick();
+  frame();
+  ImGuiWindow* panel = window("tumble view");
+  ASSERT_NE(panel, nullptr);
+  EXPECT_EQ(ImGui::GetFontSize(), 20.0f);
+  EXPECT_FLOAT_EQ(panel->Size.x, 460.0f);
+  EXPECT_FLOAT_EQ(panel->Pos.x, kWidth - 460.0f - 15.0f);
+  EXPECT_FLOAT_EQ(panel->Pos.y, 15.0f);
+  EXPECT_FLOAT_EQ(panel->Size.y, kHeight - 30.0f);
+}
+
 TEST_F(ViewerPanels, NothingOpenShowsOnlyTheFilesSectionClosed) {
   frame();
   ASSERT_NE(window("tumble view"), nullptr);

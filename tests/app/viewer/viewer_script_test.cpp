@@ -96,6 +96,23 @@ TEST(ViewerScript, MoveWheelDropScreenshotQuit) {
   EXPECT_TRUE(std::holds_alternative<QuitEvent>(event_of(steps[4])));
 }
 
+TEST(ViewerScript, ResizeAsksForAWindowSize) {
+  const auto steps = parse("0.5 resize 480 270\n1e0 resize 8192 1\n");
+  ASSERT_EQ(steps.size(), 2u);
+  EXPECT_EQ(steps[0].time, 0.5);
+  EXPECT_EQ(std::get<ResizeRequest>(steps[0].action).width, 480);
+  EXPECT_EQ(std::get<ResizeRequest>(steps[0].action).height, 270);
+  EXPECT_EQ(std::get<ResizeRequest>(steps[1].action).width, 8192);
+  EXPECT_EQ(std::get<ResizeRequest>(steps[1].action).height, 1);
+  const std::string expected = "run.txt:1: expected a whole number of pixels from 1 to 8192 for ";
+  EXPECT_THAT(error_of("0 resize 0 270"), HasSubstr(expected + "W, got \"0\""));
+  EXPECT_THAT(error_of("0 resize 480 270.5"), HasSubstr(expected + "H, got \"270.5\""));
+  EXPECT_THAT(error_of("0 resize 8193 270"), HasSubstr(expected + "W, got \"8193\""));
+  EXPECT_THAT(error_of("0 resize 480"), HasSubstr(expected + "H, got end of line"));
+  EXPECT_THAT(error_of("0 resize 480 270 90"),
+              HasSubstr("run.txt:1: expected end of line after \"resize W H\", got \"90\""));
+}
+
 TEST(ViewerScript, PressAndReleaseWithButtons) {
   const auto steps = parse(
       "1 press 10 20\n1 release 10 20 left\n2 press 1 2 right\n"
@@ -193,11 +210,12 @@ TEST(ViewerScript, BadTimes) {
 
 TEST(ViewerScript, BadVerbs) {
   EXPECT_THAT(error_of("1 jump"), HasSubstr("run.txt:1: expected a verb (key, keydown,"));
-  EXPECT_THAT(error_of("1 jump"), HasSubstr("screenshot or quit), got \"jump\""));
+  EXPECT_THAT(error_of("1 jump"), HasSubstr("screenshot, resize or quit), got \"jump\""));
   EXPECT_THAT(error_of("1 KEY space"), HasSubstr("got \"KEY\""));
-  EXPECT_THAT(error_of("1   # only a time"),
-              HasSubstr("run.txt:1: expected a verb (key, keydown, keyup, type, move, click, "
-                        "press, release, drag, wheel, drop, screenshot or quit), got end of line"));
+  EXPECT_THAT(
+      error_of("1   # only a time"),
+      HasSubstr("run.txt:1: expected a verb (key, keydown, keyup, type, move, click, "
+                "press, release, drag, wheel, drop, screenshot, resize or quit), got end of line"));
 }
 
 TEST(ViewerScript, BadKeys) {

@@ -39,6 +39,12 @@ class FrameBuilder {
   /// Radius around the camera's target that holds the whole motion (m).
   double reach() const;
 
+  /// Later draw lists are laid out for `width` x `height` frames at `font_scale` (the viewer's
+  /// window was resized, or its --font-scale): the overlay's text, plots and placement and the
+  /// arrows' fit follow. The camera's framing stays as constructed (the viewer draws with its
+  /// own camera); the history is kept.
+  void set_frame(int width, int height, double font_scale);
+
  private:
   struct Impl;
   std::shared_ptr<Impl> impl_;

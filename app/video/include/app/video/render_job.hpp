@@ -71,6 +71,10 @@ std::size_t frame_count(double duration, double fps, double time_scale);
 /// The simulated time frame `frame` shows, k * time_scale / fps.
 double frame_time(std::size_t frame, double fps, double time_scale);
 
+/// Checks a --font-scale value (kMinFontScale to kMaxFontScale, as render.font_scale) and
+/// returns it. Throws engine::InputError naming --font-scale (render, compare and view).
+double font_scale_option(double value);
+
 /// Parses "WIDTHxHEIGHT" (whole numbers, 1 to 8192). Throws engine::InputError naming --size.
 std::pair<int, int> parse_frame_size(const std::string& text);
 

@@ -19,6 +19,7 @@ struct ViewOptions {
   std::optional<double> dt;
   bool allow_overlap = false;  ///< a mesh opened on its own may have overlapping parts
   std::optional<double> time_scale;
+  std::optional<double> font_scale;  ///< panels' and overlay's text; default: the scene's
   bool paused = false;
   std::optional<double> exit_after;  ///< seconds of wall time, then quit
   bool stats = false;                ///< print frame-time statistics on exit

@@ -61,6 +61,13 @@ class Viewer {
   /// What a shortcut does (also the panel buttons).
   void apply(Shortcut shortcut);
 
+  /// The window is now `width` x `height` pixels: later frames are drawn at that size (the
+  /// renderer's framebuffers, the camera's aspect, the overlay and its text follow). A recording
+  /// in progress is finished first (a video keeps one frame size) and says so. On a failure
+  /// (no framebuffer of that size) posts the error and keeps the old size; returns whether the
+  /// frames now have the new size.
+  bool resize(int width, int height);
+
   /// Real time passed since the last frame: the session steps, the camera follows, notices
   /// age, the recording takes frames.
   void update(double wall_seconds);

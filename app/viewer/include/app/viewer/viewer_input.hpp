@@ -182,10 +182,17 @@ struct ScreenshotRequest {
   std::filesystem::path path;  ///< PNG; relative paths are against the working directory
 };
 
+/// A script's request to resize the window (as a user dragging its border would; the window
+/// system then reports the new size as for any resize).
+struct ResizeRequest {
+  int width = 0;  ///< pixels, 1 to 8192
+  int height = 0;
+};
+
 /// One timed step of a script.
 struct ScriptStep {
   double time = 0.0;  ///< seconds of wall-clock time since the viewer started
-  std::variant<InputEvent, ScreenshotRequest> action;
+  std::variant<InputEvent, ScreenshotRequest, ResizeRequest> action;
 };
 
 /// Parses a script. One step per line, `TIME VERB ARGS...`, times in seconds, non-decreasing;
@@ -201,6 +208,7 @@ struct ScriptStep {
 ///   wheel DY             wheel notches (positive zooms in)
 ///   drop PATH            a file dropped on the window (rest of the line)
 ///   screenshot PATH      writes what the window shows to PATH (PNG; rest of the line)
+///   resize W H           asks for a W x H window (whole pixels, 1 to 8192)
 ///   quit                 closes the viewer
 /// Steps are returned sorted by time (stable). Throws engine::InputError naming `file`, the
 /// line number and what was expected, e.g. `run.txt:3: expected a number for X, got "a"`.

@@ -19,13 +19,31 @@ struct FrameStats {
   double frame_ms = 0.0;  ///< drawing and showing one frame
 };
 
-/// Width (pixels) of the control panel on the right of the window.
+/// Width (pixels) of the control panel on the right of the window, with 13 px text (it scales
+/// with the text).
 inline constexpr float kPanelWidth = 360.0f;
+/// The control panel never takes more of the window's width than this.
+inline constexpr float kMaxPanelShare = 0.45f;
+
+/// Where the control panel goes in a window, in pixels from its top-left.
+struct PanelRect {
+  float x = 0.0f;
+  float y = 0.0f;
+  float width = 0.0f;
+  float height = 0.0f;
+};
+
+/// The control panel of a `width` x `height` window whose text is `font_px` high: on the right,
+/// kPanelWidth x font_px / 13 wide but at most kMaxPanelShare of the width, as tall as the
+/// window less a margin of 10 px x font_px / 13 (whole pixels) above and below, that margin
+/// from the right edge.
+PanelRect panel_rect(int width, int height, float font_px);
 
 class Panels {
  public:
   /// Draws every panel for `viewer` into the current ImGui frame (between ImGui::NewFrame and
-  /// ImGui::Render), `width` x `height` pixels.
+  /// ImGui::Render), `width` x `height` pixels; sizes follow the frame's font
+  /// (ImGui::GetFontSize(), which the window sets from render::overlay_font_px).
   void draw(Viewer& viewer, const FrameStats& stats, int width, int height);
 
  private:
@@ -37,8 +55,8 @@ class Panels {
   void inspector_section(Viewer& viewer);
   void plots_section(Viewer& viewer);
   void files_section(Viewer& viewer);
-  void help_window(Viewer& viewer, int width, int height);
-  void notices_window(Viewer& viewer, int height);
+  void help_window(Viewer& viewer, const PanelRect& panel, int height);
+  void notices_window(Viewer& viewer, const PanelRect& panel, int height);
   /// Refreshes the edit fields from the session when its runs restarted or the body changed.
   void sync(const Viewer& viewer);
 

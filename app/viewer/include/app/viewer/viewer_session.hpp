@@ -131,6 +131,15 @@ class Session {
   void set_initial_state(std::size_t body, const engine::BodyState& state);
 
   // --- Drawing -------------------------------------------------------------------------------
+  /// Text size of the overlays relative to the frame's own: the one set_font_scale() gave (the
+  /// command line's --font-scale), else the open scene's `render.font_scale` (1 without one).
+  double font_scale() const;
+  /// Overrides the scene's text scale (nullopt: back to it); the caller checks the range.
+  void set_font_scale(std::optional<double> scale);
+  /// Lays the next frames out for the renderer's size now (after Renderer::resize): the
+  /// overlay, the runs' legend and the arrows' fit follow; nothing restarts.
+  void refit_frames();
+
   /// What is drawn (the scene's `render.show`, then the user's toggles). `trails` switches
   /// the scene's trails, or one per body when the scene has none.
   ShowSettings& show() { return show_; }
@@ -183,6 +192,7 @@ class Session {
   std::vector<Run> runs_;
   ShowSettings show_;
   bool show_trails_ = false;
+  std::optional<double> font_scale_;  ///< --font-scale, over the scene's
   render::Camera scene_camera_;
 
   bool paused_ = false;
