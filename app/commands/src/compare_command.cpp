@@ -91,19 +91,23 @@ std::string run_title(const Run& run) {
   return run.integrator + ", dt = " + printf_number(run.plan.scene.dt, "%g") + " s";
 }
 
-std::string blow_up_text(const engine::BlowUp& blow_up) {
-  return "blew up at t = " + printf_number(blow_up.time, "%.4g") + " s";
+std::string blow_up_time(const engine::BlowUp& blow_up) {
+  return printf_number(blow_up.time, "%.4g");
 }
 
-/// Makes the FrameBuilder's overlay panel fit a tile: the run's integrator and dt as its
-/// title, the time (and the blow-up) as its lines, and its drift plots scaled to the tile.
+std::string blow_up_text(const engine::BlowUp& blow_up) {
+  return "blew up at t = " + blow_up_time(blow_up) + " s";
+}
+
+/// Makes the FrameBuilder's overlay panel fit a tile: the run's integrator, dt and time (and
+/// blow-up), as a full panel with drift plots or a compact corner label (compare_panels.hpp).
 void fit_panel(render::DrawList& list, const Run& run, const GridLayout& grid) {
   if (list.panels.empty()) return;
   const engine::Simulation& simulation = run.job->simulation();
-  std::vector<std::string> lines = {"t = " + printf_number(simulation.time(), "%.3f") + " s"};
-  if (const auto& blow_up = simulation.blow_up()) lines.push_back(blow_up_text(*blow_up));
-  fit_tile_panel(list.panels.front(), run_title(run), std::move(lines), grid.tile_width,
-                 grid.tile_height);
+  TileText text{run.integrator, printf_number(run.plan.scene.dt, "%g"),
+                printf_number(simulation.time(), "%.3f"), ""};
+  if (const auto& blow_up = simulation.blow_up()) text.blow_up = blow_up_time(*blow_up);
+  fit_tile_panel(list.panels.front(), text, grid.tile_width, grid.tile_height);
 }
 
 /// The overlay frame: the reference's stage and camera, its meshes as a grey ghost, every
