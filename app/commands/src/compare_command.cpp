@@ -99,15 +99,13 @@ std::string blow_up_text(const engine::BlowUp& blow_up) {
   return "blew up at t = " + blow_up_time(blow_up) + " s";
 }
 
-/// Makes the FrameBuilder's overlay panel fit a tile: the run's integrator, dt and time (and
-/// blow-up), as a full panel with drift plots or a compact corner label (compare_panels.hpp).
-void fit_panel(render::DrawList& list, const Run& run, const GridLayout& grid) {
-  if (list.panels.empty()) return;
+/// What a run's tile says: its integrator, dt and time, and when it blew up.
+TileText tile_text(const Run& run) {
   const engine::Simulation& simulation = run.job->simulation();
   TileText text{run.integrator, printf_number(run.plan.scene.dt, "%g"),
                 printf_number(simulation.time(), "%.3f"), ""};
   if (const auto& blow_up = simulation.blow_up()) text.blow_up = blow_up_time(*blow_up);
-  fit_tile_panel(list.panels.front(), text, grid.tile_width, grid.tile_height);
+  return text;
 }
 
 /// The overlay frame: the reference's stage and camera, its meshes as a grey ghost, every
@@ -225,11 +223,13 @@ void draw_grid_frame(const Comparison& comparison, render::Renderer& renderer, r
   fill_grey(frame, comparison.frame_settings.width, comparison.frame_settings.height, kGapGrey);
   // Every tile with the first run's camera and the same drift scales.
   std::vector<render::DrawList> lists;
+  std::vector<TileText> texts;
   for (std::size_t i = 0; i < comparison.runs.size(); ++i) {
     lists.push_back(comparison.runs[i].job->build());
     lists.back().camera = lists.front().camera;
-    fit_panel(lists.back(), comparison.runs[i], grid);
+    texts.push_back(tile_text(comparison.runs[i]));
   }
+  fit_tile_panels(lists, texts, grid.tile_width, grid.tile_height);
   share_plot_scales(lists);
   for (std::size_t i = 0; i < comparison.runs.size(); ++i) {
     const render::DrawList& list = lists[i];

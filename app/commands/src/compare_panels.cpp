@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "app/frame/overlay_fit.hpp"
 #include "render/overlay_layout.hpp"
@@ -65,7 +66,7 @@ void fit_compact(render::OverlayPanel& panel, const TileText& text, std::string 
 }  // namespace
 
 void fit_tile_panel(render::OverlayPanel& panel, const TileText& text, int tile_width,
-                    int tile_height) {
+                    int tile_height, bool compact) {
   const float font_px = panel.font_px;
   std::string blow_up = text.blow_up.empty() ? "" : "blew up at t = " + text.blow_up + " s";
   // The full panel: integrator and step as its title, the time (and blow-up) as its lines.
@@ -78,13 +79,38 @@ void fit_tile_panel(render::OverlayPanel& panel, const TileText& text, int tile_
                                        4.0f * panel.font_px);
   for (render::Plot& plot : panel.plots) plot.height_px = plot_height;
   fit_overlay_panel(panel, panel.lines.size(), tile_width, tile_height, kTileCoverageBudget);
-  if (!fits_tile(panel, tile_width, tile_height)) {
+  if (compact || !fits_tile(panel, tile_width, tile_height)) {
     panel.font_px = font_px;
     fit_compact(panel, text, std::move(blow_up), tile_width, tile_height);
   }
   const float margin = panel_margin(panel);
   panel.width_px =
       std::min(overlay_panel_size(panel).width, static_cast<float>(tile_width) - 2.0f * margin);
+}
+
+void fit_tile_panels(std::vector<render::DrawList>& lists, const std::vector<TileText>& texts,
+                     int tile_width, int tile_height) {
+  bool compact = false;
+  for (std::size_t i = 0; i < lists.size(); ++i) {
+    if (lists[i].panels.empty()) continue;
+    render::OverlayPanel trial = lists[i].panels.front();
+    fit_tile_panel(trial, texts.at(i), tile_width, tile_height);
+    compact = compact || trial.compact;
+  }
+  std::size_t plots = std::numeric_limits<std::size_t>::max();
+  for (std::size_t i = 0; i < lists.size(); ++i) {
+    if (lists[i].panels.empty()) continue;
+    render::OverlayPanel& panel = lists[i].panels.front();
+    fit_tile_panel(panel, texts[i], tile_width, tile_height, compact);
+    plots = std::min(plots, panel.plots.size());
+  }
+  for (render::DrawList& list : lists) {
+    if (list.panels.empty() || list.panels.front().plots.size() <= plots) continue;
+    render::OverlayPanel& panel = list.panels.front();
+    panel.plots.resize(plots);
+    panel.width_px = std::min(overlay_panel_size(panel).width,
+                              static_cast<float>(tile_width) - 2.0f * panel.position_px.x());
+  }
 }
 
 void share_plot_scales(std::vector<render::DrawList>& lists) {

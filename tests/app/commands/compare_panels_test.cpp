@@ -76,6 +76,32 @@ INSTANTIATE_TEST_SUITE_P(TileSizes, TilePanel,
                                            std::pair{426, 240}, std::pair{640, 360},
                                            std::pair{1920, 1080}));
 
+TEST(ComparePanels, EveryTileOfAGridTakesTheSameForm) {
+  const std::vector<TileText> texts = {{"rk4", "0.001", "1.000", ""},
+                                       {"semi-implicit-euler", "0.001", "1.000", ""},
+                                       {"explicit-euler", "0.001", "1.000", ""}};
+  // 240x134: "rk4"'s full panel alone would fit (13.6 %), the longer names' would not, so
+  // every tile gets the compact label. 426x240: full panels, each with as many plots as the
+  // one with the longest title keeps.
+  for (const auto& [width, height] : {std::pair{240, 134}, std::pair{426, 240}}) {
+    render::OverlayPanel alone = run_panel(width, height, {0.0f, 1e-6f});
+    fit_tile_panel(alone, texts[0], width, height);
+    std::vector<render::DrawList> lists(texts.size());
+    for (render::DrawList& list : lists) list.panels.push_back(run_panel(width, height, {0.0f}));
+    fit_tile_panels(lists, texts, width, height);
+    for (std::size_t i = 0; i < lists.size(); ++i) {
+      const render::OverlayPanel& panel = lists[i].panels.front();
+      EXPECT_EQ(panel.compact, width == 240) << width << " " << texts[i].integrator;
+      EXPECT_EQ(panel.plots.size(), lists[1].panels.front().plots.size());
+      EXPECT_LE(panel.position_px.x() + panel.width_px, static_cast<float>(width));
+    }
+    EXPECT_FALSE(alone.compact);
+    if (width == 426) {
+      EXPECT_EQ(alone.plots.size(), 1u);
+    }
+  }
+}
+
 TEST(ComparePanels, EveryTileShowsItsDriftOnTheSameScale) {
   std::vector<render::DrawList> lists(3);
   const std::vector<std::vector<float>> drifts = {

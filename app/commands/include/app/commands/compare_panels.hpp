@@ -29,9 +29,15 @@ struct TileText {
 /// - otherwise a compact corner label (render::OverlayPanel::compact: no title bar, tight
 ///   padding), the integrator on a line of its own, "dt H s, t = T s" below it (split in two
 ///   when it does not fit) and the blow-up, without plots. A 240x134 tile (2x2 grid in a
-///   480x270 GIF) gets this label.
+///   480x270 GIF) gets this label; with `compact`, any tile does (so that every tile of a
+///   grid shows the same form).
 void fit_tile_panel(render::OverlayPanel& panel, const TileText& text, int tile_width,
-                    int tile_height);
+                    int tile_height, bool compact = false);
+
+/// Fits every list's first panel to its tile with texts[i], all in one form: compact labels
+/// for all when any tile needs one, and as many drift plots in each as every tile keeps.
+void fit_tile_panels(std::vector<render::DrawList>& lists, const std::vector<TileText>& texts,
+                     int tile_width, int tile_height);
 
 /// Puts plot k of every list's first panel on one vertical scale: the common range of their
 /// values (of |value| on log axes), so that 1e-11 and 9e-2 do not look alike.
