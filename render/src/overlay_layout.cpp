@@ -14,7 +14,16 @@ float overlay_font_px(int width, int height, double font_scale) {
 }
 
 float overlay_text_width(std::size_t chars, float font_px) {
-  return static_cast<float>(chars) * 7.0f * font_px / kDefaultFontPx;
+  const float size = std::round(std::clamp(font_px, kMinFontPx, kMaxFontPx));
+  return static_cast<float>(chars) * 7.0f * size / kDefaultFontPx;
+}
+
+float compact_panel_padding(float font_px) {
+  return std::max(2.0f, std::round(0.2f * font_px));
+}
+
+float compact_panel_spacing(float font_px) {
+  return std::max(1.0f, std::round(0.1f * font_px));
 }
 
 std::vector<std::size_t> min_max_decimation(const std::vector<float>& values, int buckets) {

@@ -49,9 +49,9 @@ float label_font_px(const Label& label, int width, int height) {
 }  // namespace
 
 std::string OverlayPass::panel_id(const OverlayPanel& panel, int index) {
-  // The size is part of the id: a panel drawn at a new size is laid out afresh.
+  // The size and form are part of the id: a panel drawn at a new size is laid out afresh.
   return panel.title + "##panel" + std::to_string(index) + "@" +
-         std::to_string(font_key(panel.font_px));
+         std::to_string(font_key(panel.font_px)) + (panel.compact ? "c" : "");
 }
 
 ImFont* OverlayPass::font(float font_px) const {
@@ -125,15 +125,24 @@ void OverlayPass::build(const DrawList& frame, int width, int height) {
   int index = 0;
   for (const OverlayPanel& panel : frame.panels) {
     const std::string id = panel_id(panel, index++);
-    // Paddings, spacings and rounding follow the text size.
-    ImGui::GetStyle() = *base_style_;
-    ImGui::GetStyle().ScaleAllSizes(static_cast<float>(font_key(panel.font_px)) / kDefaultFontPx);
+    // Paddings, spacings and rounding follow the text size; a compact panel packs its lines.
+    const auto px = static_cast<float>(font_key(panel.font_px));
+    ImGuiStyle& style = ImGui::GetStyle();
+    style = *base_style_;
+    style.ScaleAllSizes(px / kDefaultFontPx);
+    if (panel.compact) {
+      const float padding = compact_panel_padding(px);
+      style.WindowPadding = ImVec2(padding, padding);
+      style.ItemSpacing.y = compact_panel_spacing(px);
+      style.WindowMinSize = ImVec2(1.0f, 1.0f);
+      style.WindowRounding = std::min(style.WindowRounding, padding);
+    }
     ImGui::PushFont(font(panel.font_px));
     ImGui::SetNextWindowPos(ImVec2(panel.position_px.x(), panel.position_px.y()));
     ImGui::SetNextWindowSizeConstraints(ImVec2(panel.width_px, 0.0f),
                                         ImVec2(panel.width_px, FLT_MAX));
-    ImGui::Begin(id.c_str(), nullptr,
-                 panel.title.empty() ? flags | ImGuiWindowFlags_NoTitleBar : flags);
+    const bool title_bar = !panel.title.empty() && !panel.compact;
+    ImGui::Begin(id.c_str(), nullptr, title_bar ? flags : flags | ImGuiWindowFlags_NoTitleBar);
     for (const std::string& line : panel.lines) ImGui::TextUnformatted(line.c_str());
     for (const Plot& plot : panel.plots) draw_plot(plot);
     ImGui::End();

@@ -91,19 +91,21 @@ std::string run_title(const Run& run) {
   return run.integrator + ", dt = " + printf_number(run.plan.scene.dt, "%g") + " s";
 }
 
-std::string blow_up_text(const engine::BlowUp& blow_up) {
-  return "blew up at t = " + printf_number(blow_up.time, "%.4g") + " s";
+std::string blow_up_time(const engine::BlowUp& blow_up) {
+  return printf_number(blow_up.time, "%.4g");
 }
 
-/// Makes the FrameBuilder's overlay panel fit a tile: the run's integrator and dt as its
-/// title, the time (and the blow-up) as its lines, and its drift plots scaled to the tile.
-void fit_panel(render::DrawList& list, const Run& run, const GridLayout& grid) {
-  if (list.panels.empty()) return;
+std::string blow_up_text(const engine::BlowUp& blow_up) {
+  return "blew up at t = " + blow_up_time(blow_up) + " s";
+}
+
+/// What a run's tile says: its integrator, dt and time, and when it blew up.
+TileText tile_text(const Run& run) {
   const engine::Simulation& simulation = run.job->simulation();
-  std::vector<std::string> lines = {"t = " + printf_number(simulation.time(), "%.3f") + " s"};
-  if (const auto& blow_up = simulation.blow_up()) lines.push_back(blow_up_text(*blow_up));
-  fit_tile_panel(list.panels.front(), run_title(run), std::move(lines), grid.tile_width,
-                 grid.tile_height);
+  TileText text{run.integrator, printf_number(run.plan.scene.dt, "%g"),
+                printf_number(simulation.time(), "%.3f"), ""};
+  if (const auto& blow_up = simulation.blow_up()) text.blow_up = blow_up_time(*blow_up);
+  return text;
 }
 
 /// The overlay frame: the reference's stage and camera, its meshes as a grey ghost, every
@@ -221,11 +223,13 @@ void draw_grid_frame(const Comparison& comparison, render::Renderer& renderer, r
   fill_grey(frame, comparison.frame_settings.width, comparison.frame_settings.height, kGapGrey);
   // Every tile with the first run's camera and the same drift scales.
   std::vector<render::DrawList> lists;
+  std::vector<TileText> texts;
   for (std::size_t i = 0; i < comparison.runs.size(); ++i) {
     lists.push_back(comparison.runs[i].job->build());
     lists.back().camera = lists.front().camera;
-    fit_panel(lists.back(), comparison.runs[i], grid);
+    texts.push_back(tile_text(comparison.runs[i]));
   }
+  fit_tile_panels(lists, texts, grid.tile_width, grid.tile_height);
   share_plot_scales(lists);
   for (std::size_t i = 0; i < comparison.runs.size(); ++i) {
     const render::DrawList& list = lists[i];

@@ -86,11 +86,15 @@ MotionBound motion_bound(const engine::BodyModel& body, const engine::BodyState&
   // Around its pivot, within a spring's energy reach, or along its straight or parabolic path.
   Eigen::Vector3d acceleration = Eigen::Vector3d::Zero();
   const engine::Spring* spring = nullptr;
+  bool through_centre = true;  // every spring attached at the centre of mass
   for (const engine::ForceTerm& term : body.forces) {
     if (const auto* gravity = std::get_if<engine::Gravity>(&term)) {
       acceleration += gravity->acceleration;
     }
-    if (const auto* s = std::get_if<engine::Spring>(&term)) spring = s;
+    if (const auto* s = std::get_if<engine::Spring>(&term)) {
+      spring = s;
+      through_centre = through_centre && s->attach.isZero();
+    }
   }
   if (body.pivoted) {
     out.spheres.push_back({body.pivot, std::max(offset + reach, arrows)});
@@ -110,8 +114,13 @@ MotionBound motion_bound(const engine::BodyModel& body, const engine::BodyState&
     const Eigen::Vector3d q = spring->anchor + body.mass * acceleration / k;
     const Eigen::Vector3d turned = state.orientation * spring->attach;
     const Eigen::Vector3d p = engine::rotation_centre(body, state) + turned;
-    const double kinetic = 0.5 * body.mass * state.velocity.squaredNorm() +
-                           0.5 * engine::angular_velocity(body, state).dot(state.angular_momentum);
+    // A spring attached at the centre of mass exerts no torque about it, so the rotation never
+    // trades energy with the stretch: the translational energy alone bounds it (a tumbling
+    // body on such a spring stays as large as a still one).
+    const double rotational =
+        through_centre ? 0.0
+                       : 0.5 * engine::angular_velocity(body, state).dot(state.angular_momentum);
+    const double kinetic = 0.5 * body.mass * state.velocity.squaredNorm() + rotational;
     const double budget = kinetic + 0.5 * k * (p - q).squaredNorm() -
                           body.mass * acceleration.dot(turned) +
                           body.mass * acceleration.norm() * spring->attach.norm();

@@ -1,6 +1,7 @@
 #include "app/frame/overlay_fit.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "render/overlay_layout.hpp"
 
@@ -8,7 +9,22 @@ namespace tumble::app {
 
 // ImGui's layout with the style scaled by font_px / 13: window padding 8, item spacing 4,
 // frame padding 4 x 3 at 13 px.
+// A compact panel: its lines alone, with the tight padding and spacing the renderer gives it.
+OverlayPanelSize compact_panel_size(const render::OverlayPanel& panel) {
+  const float f = std::round(std::clamp(panel.font_px, render::kMinFontPx, render::kMaxFontPx));
+  const float padding = render::compact_panel_padding(f);
+  std::size_t chars = 0;
+  for (const std::string& line : panel.lines) chars = std::max(chars, line.size());
+  const auto lines = static_cast<float>(panel.lines.size());
+  OverlayPanelSize size;
+  size.width = render::overlay_text_width(chars, f) + 2.0f * padding;
+  size.height =
+      2.0f * padding + lines * f + std::max(0.0f, lines - 1.0f) * render::compact_panel_spacing(f);
+  return size;
+}
+
 OverlayPanelSize overlay_panel_size(const render::OverlayPanel& panel) {
+  if (panel.compact) return compact_panel_size(panel);
   const float f = panel.font_px;
   const float u = f / render::kDefaultFontPx;
   std::size_t chars = panel.title.size() + 1;
@@ -23,8 +39,8 @@ OverlayPanelSize overlay_panel_size(const render::OverlayPanel& panel) {
 }
 
 void fit_overlay_panel(render::OverlayPanel& panel, std::size_t first_droppable, int width,
-                       int height) {
-  const double budget = kOverlayCoverageBudget * static_cast<double>(width) * height;
+                       int height, double coverage) {
+  const double budget = coverage * static_cast<double>(width) * height;
   const auto area = [&] {
     const OverlayPanelSize size = overlay_panel_size(panel);
     return static_cast<double>(std::min(size.width, static_cast<float>(width))) * size.height;

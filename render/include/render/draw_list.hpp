@@ -103,6 +103,10 @@ struct OverlayPanel {
   std::vector<Plot> plots;
   /// Text height in pixels; paddings and spacings scale with it (13: ImGui's default size).
   float font_px = 13.0f;
+  /// A compact panel: no title bar (the title is not drawn), its lines packed with the tight
+  /// padding and spacing of render::compact_panel_padding() and compact_panel_spacing(); a
+  /// corner label for small frames such as the tiles of a comparison.
+  bool compact = false;
 };
 
 /// A perspective pinhole camera.

@@ -22,9 +22,18 @@ inline constexpr float kMaxFontPx = 160.0f;
 /// [kMinFontPx, kMaxFontPx].
 float overlay_font_px(int width, int height, double font_scale = 1.0);
 
-/// Width in pixels of `chars` characters of the overlay font at `font_px` (the font is
-/// monospaced: 7 px per character at 13 px).
+/// Width in pixels of `chars` characters of the overlay font at `font_px`. The font is
+/// monospaced, 7 px per character at 13 px, and rasterised at whole pixel sizes (font_px
+/// rounded, within the limits above): 7 px * size / 13 a character (5.38 px at 10 px; ImGui
+/// 1.86 keeps the fraction, so a line of n characters is n times that wide, measured in
+/// tests/app/commands/compare_tile_coverage_test.cpp).
 float overlay_text_width(std::size_t chars, float font_px);
+
+/// A compact panel (OverlayPanel::compact, a corner label without a title bar) leaves this
+/// many pixels between its edge and its text at `font_px`, on every side...
+float compact_panel_padding(float font_px);
+/// ... and this many between its lines.
+float compact_panel_spacing(float font_px);
 
 /// Indices of the samples to draw when `count` samples are shown in `buckets` pixel columns:
 /// all of them when they fit (count <= 2 * buckets), otherwise each column's minimum and

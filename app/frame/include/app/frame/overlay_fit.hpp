@@ -22,12 +22,13 @@ struct OverlayPanelSize {
 };
 
 /// The size `panel` takes at its font_px, as wide as its longest text (title, lines, plot
-/// captions with their value).
+/// captions with their value); a compact panel's, as wide as its longest line.
 OverlayPanelSize overlay_panel_size(const render::OverlayPanel& panel);
 
-/// Applies the rule above for a `width` x `height` frame; panel.lines from `first_droppable` on
-/// may be dropped. Sets panel.width_px (at most the frame's width less the panel's margins).
+/// Applies the rule above for a `width` x `height` frame, with `coverage` the share of its
+/// pixels the panel may cover; panel.lines from `first_droppable` on may be dropped. Sets
+/// panel.width_px (at most the frame's width less the panel's margins).
 void fit_overlay_panel(render::OverlayPanel& panel, std::size_t first_droppable, int width,
-                       int height);
+                       int height, double coverage = kOverlayCoverageBudget);
 
 }  // namespace tumble::app
