@@ -10,53 +10,17 @@
 // (otherwise it has crossed onto another surface). Pixels below the contrast threshold are
 // discarded: the output already holds the scene there (a plain copy, which llvmpipe does as a
 // memcpy), so flat regions and the gentle background gradient stay bit for bit. The filter only
-// runs on 8x8-pixel blocks found to hold an edge (kEdgeBlocksFragment, kEdgeBlockPoints).
+// runs on 4x4-pixel blocks holding a pixel that passes this test (fxaa_blocks.hpp, on the CPU),
+// drawn as rectangles.
 
 namespace tumble::render::detail::shaders {
 
-/// Full-screen triangle from gl_VertexID (the fragment shader works from gl_FragCoord).
-inline constexpr const char* kFxaaVertex = R"(#version 330 core
+/// The edge blocks' rectangles (fxaa_blocks.hpp), two triangles each, in pixels.
+inline constexpr const char* kEdgeBlockVertex = R"(#version 400 core
+layout(location = 0) in vec2 pixel;
+uniform vec2 texel;  // 1 / image size
 void main() {
-  vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2)) * 2.0 - 1.0;
-  gl_Position = vec4(p, 0.0, 1.0);
-})";
-
-/// Edge blocks: one fragment per 8x8-pixel block of the image writes 1 when the block or its
-/// one-pixel rim (10x10 pixels, 25 gathers of green) has contrast above the filter's absolute
-/// floor, else 0.
-inline constexpr const char* kEdgeBlocksFragment = R"(#version 400 core
-uniform sampler2D scene;
-uniform vec2 texel;
-out vec4 edge;
-void main() {
-  vec2 corner = (floor(gl_FragCoord.xy) * 8.0) * texel;  // lower-left corner of the block
-  float lo = 1.0;
-  float hi = 0.0;
-  for (int j = 0; j < 5; ++j) {
-    for (int i = 0; i < 5; ++i) {
-      vec4 g = textureGather(scene, corner + vec2(2 * i, 2 * j) * texel, 1);
-      lo = min(lo, min(min(g.x, g.y), min(g.z, g.w)));
-      hi = max(hi, max(max(g.x, g.y), max(g.z, g.w)));
-    }
-  }
-  // No pixel of the block can pass the filter's test when the range is below both the floor
-  // and the relative threshold of the block's darkest pixel (no neighbourhood is darker).
-  edge = vec4(hi - lo >= max(0.0312, 0.125 * lo) ? 1.0 : 0.0);
-})";
-
-/// The filter runs only on edge blocks: one 8x8-pixel point per block, moved outside the clip
-/// volume (culled) when the block is flat. (llvmpipe runs a fragment shader in full for every
-/// covered pixel, discarded or not, so the work is saved by not covering the flat ones.)
-inline constexpr const char* kEdgeBlockPoints = R"(#version 400 core
-uniform sampler2D blocks;  // kEdgeBlocksFragment's output
-uniform vec2 texel;        // 1 / image size
-void main() {
-  int columns = textureSize(blocks, 0).x;
-  ivec2 block = ivec2(gl_VertexID % columns, gl_VertexID / columns);
-  vec2 centre = (vec2(block) * 8.0 + 4.0) * texel * 2.0 - 1.0;
-  bool edge = texelFetch(blocks, block, 0).r > 0.0;
-  gl_Position = edge ? vec4(centre, 0.0, 1.0) : vec4(-2.0, -2.0, 0.0, 1.0);
-  gl_PointSize = 8.0;
+  gl_Position = vec4(pixel * texel * 2.0 - 1.0, 0.0, 1.0);
 })";
 
 inline constexpr const char* kFxaaFragment = R"(#version 400 core

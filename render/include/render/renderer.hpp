@@ -6,9 +6,10 @@
 //   asked; the sample count is clamped to what the driver accepts, never a black frame).
 // - Anti-aliasing is either multisampling (`samples`) or a post-process filter (`filter`, FXAA
 //   after Lottes 2009): the scene draws into a colour texture, a same-format blit copies it into
-//   a second FBO, a 1/64-size pass marks the 8x8 blocks with contrast and the filter runs only on
-//   those, so flat pixels stay bit for bit; the overlay is drawn on the filtered image, so text
-//   is never blurred. On llvmpipe the filter costs a fraction of 4x multisampling.
+//   a second FBO, the scene read back once gives the 4x4 blocks where the filter's test passes
+//   at some pixel (found on the CPU) and the filter runs only on those, so flat pixels stay bit
+//   for bit; the overlay is drawn on the filtered image, so text is never blurred. On llvmpipe
+//   the filter costs a fraction of 4x multisampling.
 // - Meshes are uploaded once (upload() -> MeshId); a frame only sets uniforms and issues draws,
 //   except polylines and points, which are streamed because they change every frame.
 // - Pass order: vertical-gradient background (a full-screen triangle, so no clear colour to keep
@@ -41,7 +42,7 @@ namespace tumble::render {
 /// A post-process anti-aliasing filter.
 enum class AntialiasingFilter {
   none,  ///< aliased (or multisampled, with RendererOptions::samples)
-  fxaa,  ///< edge-directed blend after Lottes' FXAA (2009): 1.1-1.4x the time of aliased
+  fxaa,  ///< edge-directed blend after Lottes' FXAA (2009): 1.0-1.25x the time of aliased
 };
 
 /// Image size and anti-aliasing of a Renderer.

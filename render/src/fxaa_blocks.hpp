@@ -1,0 +1,31 @@
+#pragma once
+// The FXAA filter's edge blocks, found on the CPU from the scene's pixels (fxaa_pass.cpp reads
+// them back once; a GPU pass of 25 gathers per 8x8 block cost about a third of a light frame on
+// llvmpipe, the read-back and this scan a few per cent).
+
+#include <cstdint>
+#include <vector>
+
+namespace tumble::render::detail {
+
+/// Pixels per side of an edge block.
+inline constexpr int kEdgeBlock = 4;
+
+/// A run of edge blocks in one block row: blocks [first, first + count) of row `row`.
+struct BlockRun {
+  int row = 0;
+  int first = 0;
+  int count = 0;
+};
+
+/// The runs of kEdgeBlock-sided blocks of an RGBA8 image (`width` x `height`, 4 bytes a pixel,
+/// rows bottom-up as GL reads them) holding a pixel where the FXAA filter's contrast test can
+/// pass: the green range over the pixel, its four sides and its up-right and down-left
+/// diagonals at least max(0.0312, 1/8 of its brightest), in integers and a rounding step
+/// looser than the shader's float test, so every pixel the shader filters is in a block. A
+/// first scan over 8x8 blocks and their one-pixel rim (range at least 8 in 0..255 and 1/8 of
+/// the darkest there, which no pixel of a block failing it can pass) leaves the pixel test to
+/// the few blocks near edges. Runs come row by row, left to right; `runs` is cleared first.
+void find_edge_blocks(const std::uint8_t* rgba, int width, int height, std::vector<BlockRun>& runs);
+
+}  // namespace tumble::render::detail
