@@ -393,7 +393,8 @@ void write_report(const BenchOutcome& outcome, const std::filesystem::path& file
       << outcome.repeat
       << " timed runs of the stepping loop alone (Simulation::step; no sampling, no output); "
          "the time is their median, with their min and max.\n\n"
-      << workers_text(outcome) << "Errors are sampled at every multiple of the sampling interval (the largest step of "
+      << workers_text(outcome)
+      << "Errors are sampled at every multiple of the sampling interval (the largest step of "
          "the sweep; every swept step divides it) and at the end, the same instants for every "
          "run of a scene; each figure is the maximum over the scene's bodies. Orientation: "
          "geodesic angle 2 atan2(|vec(q_ref* q)|, |w(q_ref* q)|). omega, L: |x - x_ref| / "

@@ -128,9 +128,9 @@ int bench(const BenchOptions& options, const InterruptGuard& guard, std::ostream
     std::filesystem::remove_all(tmp, ignored);
     throw;
   }
-  out << "tumble bench: " << (shard ? "shard " + shard->text() + ": " : "")
-      << outcome.cases.size() << (shard ? " of " + std::to_string(total) : "") << " runs on "
-      << outcome.workers << " core(s); wrote "
+  out << "tumble bench: " << (shard ? "shard " + shard->text() + ": " : "") << outcome.cases.size()
+      << (shard ? " of " + std::to_string(total) : "") << " runs on " << outcome.workers
+      << " core(s); wrote "
       << (shard ? options.output.string() + " (a part for tumble merge)"
                 : (options.output / "report.md").string())
       << "\n";

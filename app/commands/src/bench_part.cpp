@@ -138,8 +138,7 @@ void write_bench_part(const BenchOutcome& part, const std::vector<std::size_t>& 
                           {"cores_available", part.cores_available}}}};
   try {
     write_results_csv(part, tmp / "results.csv");
-    write_folder_manifest(
-        tmp, row_part_manifest("bench", job, shard, total, payload));
+    write_folder_manifest(tmp, row_part_manifest("bench", job, shard, total, payload));
   } catch (const WriteError& error) {
     throw output_write_error(error, tmp, output);
   }

@@ -30,8 +30,9 @@ nlohmann::json case_result_json(const CaseResult& result);
 CaseResult case_result_from_json(const nlohmann::json& json, const std::string& source);
 
 /// The part folder of a bench: results.csv with the rows of `part` (its cases, global scenes)
-/// and part.json (of `job`, bench_job's), whose payload holds the shard's case numbers `items`, their exact results, the
-/// references of the scenes the shard ran and its workers. Into the temporary folder `tmp`.
+/// and part.json (of `job`, bench_job's), whose payload holds the shard's case numbers `items`,
+/// their exact results, the references of the scenes the shard ran and its workers. Into the
+/// temporary folder `tmp`.
 void write_bench_part(const BenchOutcome& part, const std::vector<std::size_t>& items,
                       const nlohmann::json& job, Shard shard, std::size_t total,
                       const std::filesystem::path& tmp, const std::filesystem::path& output);

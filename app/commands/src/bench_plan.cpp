@@ -204,7 +204,7 @@ void add_cases(const Sweep& sweep, const std::vector<BenchScene>& scenes,
 
 /// Loads the scenes and lays out every case (no reference yet). Throws InputError.
 void plan_bench(const BenchOptions& options, std::vector<BenchScene>& scenes,
-          std::vector<BenchCase>& cases) {
+                std::vector<BenchCase>& cases) {
   if (options.scenes.empty()) throw InputError("at least one SCENE file is required");
   const Sweep sweep = parse_sweep(options);
   std::set<std::string> labels;

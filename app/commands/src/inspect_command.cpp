@@ -6,8 +6,8 @@
 #include <cmath>
 #include <map>
 #include <optional>
-#include <sstream>
 #include <ostream>
+#include <sstream>
 #include <thread>
 #include <utility>
 
@@ -20,8 +20,8 @@
 #include "app/support/csv_writer.hpp"
 #include "engine/input_error.hpp"
 #include "inspect_inputs.hpp"
-#include "inspect_part.hpp"
 #include "inspect_output.hpp"
+#include "inspect_part.hpp"
 #include "ordered_parallel.hpp"
 
 namespace tumble::app {
@@ -172,9 +172,8 @@ int inspect(const InspectOptions& given, std::ostream& out, std::ostream& err) {
   // json prints nothing unless every file succeeded: then nothing is written either.
   if (status != kExitDone && options.format == InspectFormat::json) return status;
   if (shard) {
-    file->write(
-        inspect_part_line(inspect_job(options, inputs, batch), *shard, inputs.size(), items,
-                          digests));
+    file->write(inspect_part_line(inspect_job(options, inputs, batch), *shard, inputs.size(), items,
+                                  digests));
   }
   file->write(buffer.str());
   file->commit();

@@ -103,8 +103,8 @@ void merge_bench_parts(const std::vector<NamedManifest>& parts, const std::files
     try {
       read_bench_part(part, outcome, known);
     } catch (const json::exception& error) {
-      throw InputError((part.part / kPartManifestFile).string() + ": field 'payload': " +
-                       error.what());
+      throw InputError((part.part / kPartManifestFile).string() +
+                       ": field 'payload': " + error.what());
     }
   }
   const std::filesystem::path tmp = start_output_folder(output, kBenchOutput);

@@ -51,9 +51,10 @@ CLI::App& add_merge_command(CLI::App& cli, MergeOptions& options) {
                   "The parts: folders (bench, stability, PNG frames), .jsonl files (inspect), "
                   "video segments; any order")
       ->required();
-  command.add_option("-o,--output", options.output,
-                     "The output: a folder (bench, stability), .jsonl or .json (inspect), a "
-                     "video or PNG folder (render, compare); written atomically")
+  command
+      .add_option("-o,--output", options.output,
+                  "The output: a folder (bench, stability), .jsonl or .json (inspect), a "
+                  "video or PNG folder (render, compare); written atomically")
       ->required();
   return command;
 }

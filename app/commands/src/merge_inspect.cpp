@@ -29,7 +29,8 @@ void read_inspect_part(const NamedManifest& part, std::vector<json>& objects,
   for (std::size_t number = 2; std::getline(in, line); ++number) {
     json object = json::parse(line, nullptr, false);
     const std::string where = name + ": line " + std::to_string(number);
-    if (object.is_discarded() || !object.is_object()) throw InputError(where + ": not a JSON object");
+    if (object.is_discarded() || !object.is_object())
+      throw InputError(where + ": not a JSON object");
     const auto item = object.find("item");
     if (item == object.end() || !item->is_number_unsigned()) {
       throw InputError(where + ": no \"item\" (the file's place in the whole list)");
@@ -72,8 +73,8 @@ void merge_inspect_parts(const std::vector<NamedManifest>& parts,
     for (std::size_t i = 0; i < objects.size(); ++i) {
       if (objects[i].contains("error")) {
         throw InputError(parts[owner[i]].part.string() + ": " +
-                         objects[i].value("file", std::string("a file")) +
-                         " was not inspected (" + objects[i]["error"].dump() +
+                         objects[i].value("file", std::string("a file")) + " was not inspected (" +
+                         objects[i]["error"].dump() +
                          "); a .json merge needs every file, as inspect --json does (merge to "
                          ".jsonl to keep the errors)");
       }

@@ -46,8 +46,8 @@ void read_stability_part(const NamedManifest& part, const std::string& suite,
   const std::string source = (part.part / kPartManifestFile).string();
   const std::vector<std::size_t> items = index_list(m.payload.at("runs"), source, "payload.runs");
   if (items != shard_items(m.total, m.shard)) {
-    throw InputError(part.part.string() + ": its rows are not the runs of shard " +
-                     m.shard.text() + " (" + std::to_string(items.size()) + " listed, " +
+    throw InputError(part.part.string() + ": its rows are not the runs of shard " + m.shard.text() +
+                     " (" + std::to_string(items.size()) + " listed, " +
                      std::to_string(shard_size(m.total, m.shard, ShardSplit::kStrided)) +
                      " expected)");
   }
@@ -60,8 +60,8 @@ void read_stability_part(const NamedManifest& part, const std::string& suite,
     StabilityRun run = stability_run_from_json(results[k], source);
     const RunKey& key = keys[items[k]];
     if (run.case_name != key.case_name || run.integrator != key.integrator || run.dt != key.dt) {
-      throw InputError(source + ": run " + std::to_string(items[k]) + " is " + run.case_name +
-                       " " + run.integrator + ", not the sweep's " + key.case_name + " " +
+      throw InputError(source + ": run " + std::to_string(items[k]) + " is " + run.case_name + " " +
+                       run.integrator + ", not the sweep's " + key.case_name + " " +
                        key.integrator);
     }
     mine.push_back(std::move(run));
@@ -83,17 +83,16 @@ void merge_stability_parts(const std::vector<NamedManifest>& parts,
   if (!gnuplot_available()) throw InputError("gnuplot is not installed (needed for the heat map)");
   const std::vector<RunKey> keys = run_keys(cases, integrators);
   if (keys.size() != first.total) {
-    throw InputError(parts.front().part.string() + ": the job has " +
-                     std::to_string(keys.size()) + " runs, the part's manifest " +
-                     std::to_string(first.total));
+    throw InputError(parts.front().part.string() + ": the job has " + std::to_string(keys.size()) +
+                     " runs, the part's manifest " + std::to_string(first.total));
   }
   std::vector<StabilityRun> runs(keys.size());
   for (const NamedManifest& part : parts) {
     try {
       read_stability_part(part, suite, cases, keys, runs);
     } catch (const json::exception& error) {
-      throw InputError((part.part / kPartManifestFile).string() + ": field 'payload': " +
-                       error.what());
+      throw InputError((part.part / kPartManifestFile).string() +
+                       ": field 'payload': " + error.what());
     }
   }
   const std::filesystem::path tmp = start_output_folder(output, kStabilityOutput);
@@ -105,9 +104,8 @@ void merge_stability_parts(const std::vector<NamedManifest>& parts,
     std::filesystem::remove_all(tmp, ignored);
     throw;
   }
-  out << "tumble merge: " << parts.size() << " stability parts, " << runs.size()
-      << " runs; wrote " << (output / "stability.csv").string()
-      << ", stability.md, stability.png, stability.svg\n";
+  out << "tumble merge: " << parts.size() << " stability parts, " << runs.size() << " runs; wrote "
+      << (output / "stability.csv").string() << ", stability.md, stability.png, stability.svg\n";
 }
 
 }  // namespace tumble::app

@@ -63,8 +63,8 @@ std::vector<StabilityRun> run_sweep(const std::vector<StabilityCase>& cases,
     const std::size_t count = integrators.size() * c.dts.size();
     std::size_t taken = 0;
     for (std::size_t i = first; i < first + count; ++i) taken += mine(i);
-    err << "tumble stability: [" << k + 1 << "/" << cases.size() << "] " << c.name << ": "
-        << taken << " runs\n"
+    err << "tumble stability: [" << k + 1 << "/" << cases.size() << "] " << c.name << ": " << taken
+        << " runs\n"
         << std::flush;
     if (guard.interrupted()) return runs;
     if (taken == 0) {
@@ -142,8 +142,8 @@ int stability(const StabilityOptions& options, const InterruptGuard& guard, std:
     if (guard.interrupted()) return interrupted_run(temporary);
     finish_output_folder(temporary, output);
     if (shard) {
-      out << "tumble stability: shard " << shard->text() << ": " << runs.size() << " of "
-          << total << " runs; wrote " << output.string() << " (a part for tumble merge)\n";
+      out << "tumble stability: shard " << shard->text() << ": " << runs.size() << " of " << total
+          << " runs; wrote " << output.string() << " (a part for tumble merge)\n";
     } else {
       print_summary(runs, cases.size(), output, out);
     }

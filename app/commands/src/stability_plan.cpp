@@ -17,7 +17,8 @@ using engine::InputError;
 namespace fs = std::filesystem;
 
 /// The integrators --integrators names (each name checked), or every one.
-std::vector<engine::IntegratorInfo> parse_stability_integrators(const std::optional<std::string>& text) {
+std::vector<engine::IntegratorInfo> parse_stability_integrators(
+    const std::optional<std::string>& text) {
   if (!text) return engine::integrator_catalog();
   std::vector<engine::IntegratorInfo> chosen;
   for (const engine::IntegratorInfo* info : parse_integrator_list(*text, "--integrators")) {
@@ -27,7 +28,8 @@ std::vector<engine::IntegratorInfo> parse_stability_integrators(const std::optio
 }
 
 /// The cases to run: the suite's (filtered by --cases), then the scene files.
-std::vector<StabilityCase> gather_stability_cases(const StabilityOptions& options, std::string& suite_name) {
+std::vector<StabilityCase> gather_stability_cases(const StabilityOptions& options,
+                                                  std::string& suite_name) {
   std::optional<std::vector<double>> dts;
   if (options.dts) dts = parse_positive_list(*options.dts, "--dts");
   std::vector<StabilityCase> cases;
@@ -58,9 +60,9 @@ std::vector<StabilityCase> gather_stability_cases(const StabilityOptions& option
 /// Writes the CSV, the markdown report and the heat map into the temporary folder `temporary`;
 /// a failed write is named by its final name in `output` (nothing is written there).
 void write_stability_folder(const std::string& suite, const std::vector<StabilityCase>& cases,
-                   const std::vector<engine::IntegratorInfo>& integrators,
-                   const std::vector<StabilityRun>& runs, const fs::path& temporary,
-                   const fs::path& output) {
+                            const std::vector<engine::IntegratorInfo>& integrators,
+                            const std::vector<StabilityRun>& runs, const fs::path& temporary,
+                            const fs::path& output) {
   try {
     write_text_file(temporary / "stability.csv", stability_csv(suite, cases, runs));
     write_text_file(temporary / "stability.md",
@@ -72,12 +74,10 @@ void write_stability_folder(const std::string& suite, const std::vector<Stabilit
   }
 }
 
-
 const OutputFolderKind kStabilityOutput{"stability", "stability.md", "# tumble stability",
                                         "stability.csv"};
 
-std::size_t stability_run_count(const std::vector<StabilityCase>& cases,
-                                std::size_t integrators) {
+std::size_t stability_run_count(const std::vector<StabilityCase>& cases, std::size_t integrators) {
   std::size_t runs = 0;
   for (const StabilityCase& c : cases) runs += integrators * c.dts.size();
   return runs;

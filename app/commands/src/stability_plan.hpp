@@ -26,8 +26,7 @@ std::vector<StabilityCase> gather_stability_cases(const StabilityOptions& option
                                                   std::string& suite_name);
 
 /// The number of runs of the sweep: cases x integrators x each case's dts.
-std::size_t stability_run_count(const std::vector<StabilityCase>& cases,
-                                std::size_t integrators);
+std::size_t stability_run_count(const std::vector<StabilityCase>& cases, std::size_t integrators);
 
 /// A stability output: stability.md under its title (and the suite), beside stability.csv.
 extern const OutputFolderKind kStabilityOutput;

@@ -33,8 +33,8 @@ struct InspectOptions {
   InspectFormat format = InspectFormat::text;
   /// The frame of the XML formats' inertia: the mesh file's axes or the principal axes.
   robot::InertialFrame frame = robot::InertialFrame::mesh;
-  bool recursive = false;  ///< directories: descend into sub-directories
-  unsigned jobs = 1;       ///< files inspected at once; 0: one per core
+  bool recursive = false;     ///< directories: descend into sub-directories
+  unsigned jobs = 1;          ///< files inspected at once; 0: one per core
   bool format_given = false;  ///< --format, --json or --jsonl was given
   /// -o FILE: the output written there (atomically) instead of on stdout.
   std::optional<std::filesystem::path> output;
