@@ -246,7 +246,7 @@ TEST_F(ShardMergeRows, BadPartsAreRefusedNamingThePart) {
 TEST_F(ShardMergeRows, BadShardOptionsAreOneLineErrors) {
   for (const std::string& command :
        {" bench '" + kScene + "' --shard 3/3 -o '" + (dir_ / "x").string() + "'",
-        " bench '" + kScene + "' --shard 1/2", " stability --suite quick --shard 1/2",
+        " bench '" + kScene + "' --shard 1/2", std::string(" stability --suite quick --shard 1/2"),
         " stability --suite quick --shard a/2 -o '" + (dir_ / "x").string() + "'"}) {
     const CommandResult result = run_command(tumble_executable() + command);
     EXPECT_EQ(result.status, 1) << command;
