@@ -82,7 +82,7 @@ const std::vector<std::string>& results_columns() {
   return columns;
 }
 
-void write_results_csv(const BenchOutcome& outcome, const std::filesystem::path& file) {
+std::string results_csv(const BenchOutcome& outcome) {
   std::ostringstream out;
   for (std::size_t i = 0; i < results_columns().size(); ++i) {
     out << (i ? "," : "") << results_columns()[i];
@@ -112,7 +112,11 @@ void write_results_csv(const BenchOutcome& outcome, const std::filesystem::path&
     }
     out << "\n";
   }
-  write_text_file(file, out.str());
+  return out.str();
+}
+
+void write_results_csv(const BenchOutcome& outcome, const std::filesystem::path& file) {
+  write_text_file(file, results_csv(outcome));
 }
 
 namespace {
@@ -353,6 +357,32 @@ void scene_section(std::ostream& out, const BenchOutcome& outcome, std::size_t s
   plot_links(out, outcome.scenes[s]);
 }
 
+/// Where the timed loops ran: one run's workers, or each shard's.
+std::string workers_text(const BenchOutcome& outcome) {
+  std::ostringstream out;
+  const auto workers = [&](const BenchWorkers& w, const char* between) {
+    out << w.workers << " worker" << (w.workers == 1 ? "" : "s") << between << "(cores";
+    for (int core : w.cores_used) out << " " << core;
+    out << " of " << w.cores_available << " available)";
+  };
+  if (outcome.shards.empty()) {
+    out << "Ran on ";
+    workers({outcome.workers, outcome.cores_used, outcome.cores_available},
+            ", each pinned to its own core ");
+    out << ", so no two timed loops shared a core.\n\n";
+    return out.str();
+  }
+  out << "Ran as " << outcome.shards.size()
+      << " shards (`--shard I/N`) merged by `tumble merge`, the workers of each shard pinned one "
+         "per core of its machine, so no two timed loops of a shard shared a core:";
+  for (std::size_t i = 0; i < outcome.shards.size(); ++i) {
+    out << (i ? ";" : "") << " shard " << i << "/" << outcome.shards.size() << " on ";
+    workers(outcome.shards[i], " ");
+  }
+  out << ".\n\n";
+  return out.str();
+}
+
 }  // namespace
 
 void write_report(const BenchOutcome& outcome, const std::filesystem::path& file) {
@@ -363,11 +393,7 @@ void write_report(const BenchOutcome& outcome, const std::filesystem::path& file
       << outcome.repeat
       << " timed runs of the stepping loop alone (Simulation::step; no sampling, no output); "
          "the time is their median, with their min and max.\n\n"
-      << "Ran on " << outcome.workers << " worker" << (outcome.workers == 1 ? "" : "s")
-      << ", each pinned to its own core (cores";
-  for (int core : outcome.cores_used) out << " " << core;
-  out << " of " << outcome.cores_available
-      << " available), so no two timed loops shared a core.\n\n"
+      << workers_text(outcome)
       << "Errors are sampled at every multiple of the sampling interval (the largest step of "
          "the sweep; every swept step divides it) and at the end, the same instants for every "
          "run of a scene; each figure is the maximum over the scene's bodies. Orientation: "

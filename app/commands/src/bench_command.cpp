@@ -1,235 +1,31 @@
 // `tumble bench`: options, validation, the output directory and the run of every case.
 #include "app/commands/bench_command.hpp"
 
-#include "app/scene/option_lists.hpp"
-#include "app/support/interrupt_guard.hpp"
-#include "app/support/output_folder.hpp"
-#include "app/support/printf_number.hpp"
-
 #include <algorithm>
-#include <cctype>
-#include <cmath>
-#include <cstdio>
-#include <fstream>
-#include <functional>
-#include <iostream>
+#include <optional>
 #include <ostream>
-#include <set>
-#include <sstream>
-#include <stdexcept>
 
 #include <CLI/CLI.hpp>
-
-#include "app/commands/exit_status.hpp"
+#include <nlohmann/json.hpp>
 
 #include "app/analysis/bench_report.hpp"
 #include "app/analysis/bench_runner.hpp"
 #include "app/analysis/gnuplot.hpp"
-#include "app/scene/scene.hpp"
+#include "app/commands/exit_status.hpp"
+#include "app/farm/shard.hpp"
+#include "app/support/interrupt_guard.hpp"
+#include "app/support/output_folder.hpp"
+#include "app/support/printf_number.hpp"
 #include "app/support/progress_bar.hpp"
+#include "bench_part.hpp"
+#include "bench_plan.hpp"
 #include "engine/input_error.hpp"
-#include "engine/integrators.hpp"
+#include "row_parts.hpp"
 
 namespace tumble::app {
 namespace {
 
 using engine::InputError;
-
-/// A whole number in [minimum, ...] or an error naming the option.
-long long parse_count(const std::string& text, const char* option, long long minimum) {
-  std::size_t used = 0;
-  long long value = 0;
-  try {
-    value = std::stoll(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || value < minimum) {
-    throw InputError(std::string(option) + ": expected a whole number >= " +
-                     std::to_string(minimum) + ", got '" + text + "'");
-  }
-  return value;
-}
-
-/// A list of positive numbers, largest first, each once.
-std::vector<double> descending_positive_list(const std::string& text, const char* option) {
-  std::vector<double> values = parse_positive_list(text, option);
-  std::sort(values.begin(), values.end(), std::greater<>());
-  values.erase(std::unique(values.begin(), values.end()), values.end());
-  return values;
-}
-
-/// The integrators to run: the list given, or every one but the exact solution.
-std::vector<const engine::IntegratorInfo*> chosen_integrators(const BenchOptions& options) {
-  std::vector<const engine::IntegratorInfo*> chosen;
-  if (!options.integrators) {
-    for (const auto& info : engine::integrator_catalog()) {
-      if (info.kind != engine::IntegratorKind::kExact) chosen.push_back(&info);
-    }
-    return chosen;
-  }
-  chosen = parse_integrator_list(*options.integrators, "--integrators");
-  for (const engine::IntegratorInfo* info : chosen) {
-    if (info->kind == engine::IntegratorKind::kExact) {
-      throw InputError("--integrators: 'exact' is the reference, not a benchmarked integrator");
-    }
-  }
-  if (chosen.empty()) throw InputError("--integrators: expected a non-empty list");
-  return chosen;
-}
-
-/// A file-name-safe label from the scene file's stem, unique among `taken`.
-std::string scene_label(const std::filesystem::path& file, std::set<std::string>& taken) {
-  std::string label = file.stem().string();
-  for (char& c : label) {
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
-  }
-  if (label.empty()) label = "scene";
-  std::string unique = label;
-  for (int n = 2; taken.count(unique); ++n) unique = label + "-" + std::to_string(n);
-  taken.insert(unique);
-  return unique;
-}
-
-/// The sweep the options ask for, checked against the integrators chosen.
-struct Sweep {
-  std::vector<const engine::IntegratorInfo*> integrators;
-  bool any_fixed = false;
-  std::optional<std::vector<double>> dts;  ///< the given steps, else the scenes' defaults
-  std::vector<double> tolerances;
-  std::optional<double> duration;  ///< replaces every scene's duration
-};
-
-Sweep parse_sweep(const BenchOptions& options) {
-  Sweep sweep;
-  sweep.integrators = chosen_integrators(options);
-  const auto& integrators = sweep.integrators;
-  sweep.any_fixed = std::any_of(integrators.begin(), integrators.end(),
-                                [](const auto* info) { return !info->adaptive; });
-  const bool any_adaptive = std::any_of(integrators.begin(), integrators.end(),
-                                        [](const auto* info) { return info->adaptive; });
-  if (options.dts && !sweep.any_fixed) {
-    throw InputError("--dts: no fixed-step integrator chosen (adaptive ones take --tolerances)");
-  }
-  if (options.tolerances && !any_adaptive) {
-    throw InputError("--tolerances: no adaptive integrator chosen (only dopri takes one)");
-  }
-  if (options.dts) sweep.dts = descending_positive_list(*options.dts, "--dts");
-  sweep.tolerances.assign(std::begin(kDefaultTolerances), std::end(kDefaultTolerances));
-  if (options.tolerances) {
-    sweep.tolerances = descending_positive_list(*options.tolerances, "--tolerances");
-  }
-  if (options.duration) {
-    const std::vector<double> values = parse_positive_list(*options.duration, "--duration");
-    if (values.size() != 1) {
-      throw InputError("--duration: expected one positive number, got '" + *options.duration + "'");
-    }
-    sweep.duration = values.front();
-  }
-  return sweep;
-}
-
-/// The steps of one scene: the given steps, or the default factors of the scene's dt that fit.
-std::vector<double> scene_steps(const Sweep& sweep, const SceneDescription& description,
-                                const std::filesystem::path& file) {
-  std::vector<double> steps;
-  if (sweep.dts) {
-    steps = *sweep.dts;
-    for (double dt : steps) {
-      if (auto problem = step_problem(dt, description.duration)) {
-        throw InputError("--dts: " + printf_number(dt) + ": " + *problem);
-      }
-    }
-    return steps;
-  }
-  for (double factor : kDefaultStepFactors) {
-    const double dt = description.dt * factor;
-    if (!step_problem(dt, description.duration)) steps.push_back(dt);
-  }
-  if (steps.empty()) throw InputError(file.string() + ": dt: longer than the duration");
-  return steps;
-}
-
-/// The sampling interval: the largest step, which every step must divide.
-double sampling_interval(const Sweep& sweep, const std::vector<double>& steps,
-                         const SceneDescription& description) {
-  const double interval = sweep.any_fixed ? steps.front() : description.dt;
-  for (double dt : steps) {
-    const double ratio = interval / dt;
-    if (std::abs(ratio - std::round(ratio)) > 1e-9 * ratio) {
-      throw InputError("--dts: " + printf_number(dt) + " does not divide the largest step " +
-                       printf_number(interval) + " (the errors are sampled on its grid)");
-    }
-  }
-  return interval;
-}
-
-BenchScene bench_scene(const std::filesystem::path& file, const SceneDescription& description,
-                       double interval, std::set<std::string>& labels) {
-  CompiledScene compiled = compile_scene(description);
-  BenchScene scene;
-  scene.file = file;
-  scene.name = description.name;
-  scene.label = scene_label(file, labels);
-  scene.settings = compiled.settings;
-  scene.grid = {interval, description.duration};
-  scene.torque_free = std::all_of(compiled.bodies.begin(), compiled.bodies.end(),
-                                  [](const auto& body) { return body.torque_free(); });
-  scene.conservative = std::all_of(compiled.bodies.begin(), compiled.bodies.end(),
-                                   [](const auto& body) { return body.conservative(); });
-  scene.bodies = std::move(compiled.bodies);
-  scene.initial = std::move(compiled.initial);
-  return scene;
-}
-
-/// The cases of the last scene: fixed-step integrators over the steps, adaptive ones over the
-/// tolerances.
-void add_cases(const Sweep& sweep, const std::vector<BenchScene>& scenes,
-               const std::vector<double>& steps, std::vector<BenchCase>& cases) {
-  const double interval = scenes.back().grid.interval;
-  for (const auto* info : sweep.integrators) {
-    BenchCase c;
-    c.scene = scenes.size() - 1;
-    c.integrator = info->name;
-    c.kind = info->kind;
-    c.order = info->order;
-    c.adaptive = info->adaptive;
-    if (info->adaptive) {
-      // Sampled at the instants of the fixed-step runs: dopri interpolates them (dense output),
-      // its steps are its controller's whatever the output step.
-      c.dt = interval;
-      for (double tolerance : sweep.tolerances) {
-        c.tolerance = tolerance;
-        cases.push_back(c);
-      }
-    } else {
-      for (double dt : steps) {
-        c.dt = dt;
-        cases.push_back(c);
-      }
-    }
-  }
-}
-
-/// Loads the scenes and lays out every case (no reference yet). Throws InputError.
-void plan(const BenchOptions& options, std::vector<BenchScene>& scenes,
-          std::vector<BenchCase>& cases) {
-  if (options.scenes.empty()) throw InputError("at least one SCENE file is required");
-  if (options.output.empty()) throw InputError("-o DIR is required");
-  const Sweep sweep = parse_sweep(options);
-  std::set<std::string> labels;
-  for (const std::filesystem::path& file : options.scenes) {
-    SceneDescription description = load_scene(file);
-    if (sweep.duration) description.duration = *sweep.duration;
-    const std::vector<double> steps = scene_steps(sweep, description, file);
-    const double interval = sampling_interval(sweep, steps, description);
-    scenes.push_back(bench_scene(file, description, interval, labels));
-    add_cases(sweep, scenes, steps, cases);
-  }
-}
-
-/// A bench output: report.md under its title, beside results.csv.
-const OutputFolderKind kBenchOutput{"bench", "report.md", "# tumble bench", "results.csv"};
 
 std::string case_line(const BenchScene& scene, const BenchCase& c, const CaseResult& r) {
   std::string line = scene.label + " " + c.integrator + " " +
@@ -243,57 +39,83 @@ std::string case_line(const BenchScene& scene, const BenchCase& c, const CaseRes
 /// Thrown out of a run that caught SIGINT or SIGTERM, to remove its outputs on the way out.
 struct Interrupted {};
 
+/// The references of the scenes the cases use, then the cases, one line (or a bar on a
+/// terminal) each. Throws Interrupted.
+void run_all(BenchOutcome& outcome, std::size_t jobs, const InterruptGuard& guard,
+             std::ostream& err) {
+  std::vector<bool> used(outcome.scenes.size(), false);
+  for (const BenchCase& c : outcome.cases) used[c.scene] = true;
+  for (std::size_t s = 0; s < outcome.scenes.size(); ++s) {
+    if (!used[s]) continue;
+    BenchScene& scene = outcome.scenes[s];
+    try {
+      scene.reference = make_reference(scene.bodies, scene.initial, scene.grid);
+    } catch (const InputError& error) {
+      throw InputError(scene.file.string() + ": " + error.what());
+    }
+    if (guard.interrupted()) throw Interrupted{};
+  }
+  const std::vector<int> cores = available_cores();
+  outcome.cores_available = cores.size();
+  outcome.workers = std::clamp<std::size_t>(jobs, 1, cores.size());
+  outcome.cores_used.assign(cores.begin(), cores.begin() + static_cast<long>(outcome.workers));
+  const bool tty = ProgressBar::on_terminal(err);
+  ProgressBar bar(err, outcome.cases.size(), "runs", tty);
+  const std::size_t total = outcome.cases.size();
+  outcome.results = run_cases(
+      outcome.scenes, outcome.cases, outcome.repeat, outcome.workers,
+      [&](std::size_t i, const CaseResult& r, std::size_t finished) {
+        if (tty) {
+          bar.update(finished);
+        } else {
+          err << "tumble bench: [" << finished << "/" << total << "] "
+              << case_line(outcome.scenes[outcome.cases[i].scene], outcome.cases[i], r) << "\n";
+        }
+      },
+      [&] { return guard.interrupted(); });
+  bar.clear();
+  if (guard.interrupted()) throw Interrupted{};
+}
+
 int bench(const BenchOptions& options, const InterruptGuard& guard, std::ostream& out,
           std::ostream& err) {
   // Everything the user typed is checked before any output is created, the cheap checks
   // before the scenes' meshes are read.
   BenchOutcome outcome;
-  outcome.repeat = static_cast<int>(parse_count(options.repeat.value_or("3"), "--repeat", 1));
-  const auto jobs = static_cast<std::size_t>(parse_count(options.jobs.value_or("1"), "--jobs", 1));
-  if (!gnuplot_available()) throw InputError("gnuplot is not installed (needed for the plots)");
-  plan(options, outcome.scenes, outcome.cases);
-  const std::filesystem::path tmp = start_output_folder(options.output, kBenchOutput);
-
+  outcome.repeat =
+      static_cast<int>(parse_whole_number(options.repeat.value_or("3"), "--repeat", 1));
+  const auto jobs =
+      static_cast<std::size_t>(parse_whole_number(options.jobs.value_or("1"), "--jobs", 1));
+  std::optional<Shard> shard;
+  if (options.shard) shard = parse_shard(*options.shard);
+  if (options.output.empty()) {
+    throw InputError(shard ? "--shard: -o DIR is required (the folder of the part)"
+                           : "-o DIR is required");
+  }
+  // A part has no plots: only the merge needs gnuplot.
+  if (!shard && !gnuplot_available()) {
+    throw InputError("gnuplot is not installed (needed for the plots)");
+  }
+  plan_bench(options, outcome.scenes, outcome.cases);
+  const std::size_t total = outcome.cases.size();
+  std::vector<std::size_t> items;
+  nlohmann::json job;
+  if (shard) {
+    job = bench_job(options);
+    items = shard_items(total, *shard);
+    std::vector<BenchCase> mine;
+    for (const std::size_t i : items) mine.push_back(outcome.cases[i]);
+    outcome.cases = std::move(mine);
+  }
+  const std::filesystem::path tmp =
+      start_output_folder(options.output, shard ? bench_part_kind() : kBenchOutput);
   try {
-    // References, once per scene.
-    for (BenchScene& scene : outcome.scenes) {
-      try {
-        scene.reference = make_reference(scene.bodies, scene.initial, scene.grid);
-      } catch (const InputError& error) {
-        throw InputError(scene.file.string() + ": " + error.what());
-      }
-      if (guard.interrupted()) throw Interrupted{};
-    }
-
-    // The cases, one line (or a bar on a terminal) each.
-    const std::vector<int> cores = available_cores();
-    outcome.cores_available = cores.size();
-    outcome.workers = std::clamp<std::size_t>(jobs, 1, cores.size());
-    outcome.cores_used.assign(cores.begin(), cores.begin() + static_cast<long>(outcome.workers));
-    const bool tty = ProgressBar::on_terminal(err);
-    ProgressBar bar(err, outcome.cases.size(), "runs", tty);
-    const std::size_t total = outcome.cases.size();
-    outcome.results = run_cases(
-        outcome.scenes, outcome.cases, outcome.repeat, outcome.workers,
-        [&](std::size_t i, const CaseResult& r, std::size_t finished) {
-          if (tty) {
-            bar.update(finished);
-          } else {
-            err << "tumble bench: [" << finished << "/" << total << "] "
-                << case_line(outcome.scenes[outcome.cases[i].scene], outcome.cases[i], r) << "\n";
-          }
-        },
-        [&] { return guard.interrupted(); });
-    bar.clear();
-    if (guard.interrupted()) throw Interrupted{};
-
+    run_all(outcome, jobs, guard, err);
     // Outputs, then the directory into place; a failed write names the file by its final name.
-    try {
-      write_results_csv(outcome, tmp / "results.csv");
-      write_plots(outcome, tmp);
-      write_report(outcome, tmp / "report.md");
-    } catch (const WriteError& error) {
-      throw output_write_error(error, tmp, options.output);
+    if (shard) {
+      write_bench_part(outcome, items, job, *shard, total, tmp, options.output);
+    } else {
+      write_bench_folder(outcome, tmp, options.output);
     }
     if (guard.interrupted()) throw Interrupted{};
     finish_output_folder(tmp, options.output);
@@ -306,8 +128,12 @@ int bench(const BenchOptions& options, const InterruptGuard& guard, std::ostream
     std::filesystem::remove_all(tmp, ignored);
     throw;
   }
-  out << "tumble bench: " << outcome.cases.size() << " runs on " << outcome.workers
-      << " core(s); wrote " << (options.output / "report.md").string() << "\n";
+  out << "tumble bench: " << (shard ? "shard " + shard->text() + ": " : "") << outcome.cases.size()
+      << (shard ? " of " + std::to_string(total) : "") << " runs on " << outcome.workers
+      << " core(s); wrote "
+      << (shard ? options.output.string() + " (a part for tumble merge)"
+                : (options.output / "report.md").string())
+      << "\n";
   return 0;
 }
 
@@ -345,7 +171,11 @@ CLI::App& add_bench_command(CLI::App& cli, BenchOptions& options) {
   bench.add_option_function<std::string>(
       "-o,--output", [&](const std::string& v) { options.output = v; },
       "Output directory DIR (written atomically; an existing one must be empty or a previous "
-      "bench output)");
+      "bench output); with --shard, the folder of the part");
+  bench.add_option_function<std::string>(
+      "--shard", [&](const std::string& v) { options.shard = v; },
+      "I/N: run only the I-th of N shards of the cases (I from 0; every N-th case) and write "
+      "-o DIR as a part: its rows and part.json, for tumble merge");
   return bench;
 }
 

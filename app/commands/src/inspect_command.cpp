@@ -5,18 +5,23 @@
 #include <charconv>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <ostream>
+#include <sstream>
 #include <thread>
 #include <utility>
 
 #include <CLI/CLI.hpp>
 
 #include "app/commands/exit_status.hpp"
+#include "app/farm/shard.hpp"
 #include "app/scene/mesh_inspection.hpp"
 #include "app/scene/unit_hint.hpp"
+#include "app/support/csv_writer.hpp"
 #include "engine/input_error.hpp"
 #include "inspect_inputs.hpp"
 #include "inspect_output.hpp"
+#include "inspect_part.hpp"
 #include "ordered_parallel.hpp"
 
 namespace tumble::app {
@@ -31,7 +36,10 @@ void add_output_options(CLI::App& inspect, InspectOptions& options) {
       inspect
           .add_option_function<std::string>(
               "--format",
-              [&options, formats](const std::string& name) { options.format = formats.at(name); },
+              [&options, formats](const std::string& name) {
+                options.format = formats.at(name);
+                options.format_given = true;
+              },
               "text (the table, default); json (one object, an array for a batch; nothing "
               "unless every file succeeds); jsonl (one object a line per file as it finishes, "
               "errors as {\"file\", \"error\"}); urdf, sdf, mjcf (the inertial element)")
@@ -39,11 +47,21 @@ void add_output_options(CLI::App& inspect, InspectOptions& options) {
           ->option_text("text|json|jsonl|urdf|sdf|mjcf");
   inspect
       .add_flag_callback(
-          "--json", [&] { options.format = InspectFormat::json; }, "Same as --format json")
+          "--json",
+          [&] {
+            options.format = InspectFormat::json;
+            options.format_given = true;
+          },
+          "Same as --format json")
       ->excludes(format);
   inspect
       .add_flag_callback(
-          "--jsonl", [&] { options.format = InspectFormat::jsonl; }, "Same as --format jsonl")
+          "--jsonl",
+          [&] {
+            options.format = InspectFormat::jsonl;
+            options.format_given = true;
+          },
+          "Same as --format jsonl")
       ->excludes(format);
   const std::map<std::string, robot::InertialFrame> frames = {
       {"mesh", robot::InertialFrame::mesh}, {"principal", robot::InertialFrame::principal}};
@@ -67,6 +85,14 @@ void add_batch_options(CLI::App& inspect, InspectOptions& options) {
                   "Files inspected at once (default 1; 0: one per core); output stays in input "
                   "order")
       ->check(CLI::NonNegativeNumber);
+  inspect.add_option_function<std::string>(
+      "-o,--output", [&](const std::string& value) { options.output = value; },
+      "Write the output to FILE (atomically) instead of stdout; with --shard, the part "
+      "(FILE.jsonl)");
+  inspect.add_option_function<std::string>(
+      "--shard", [&](const std::string& value) { options.shard = value; },
+      "I/N: inspect only the I-th of N shards of the file list (I from 0; every N-th file) and "
+      "write -o FILE.jsonl as a part for tumble merge");
 }
 
 /// One file's inspection, every error caught into the outcome.
@@ -88,21 +114,70 @@ InspectOutcome inspect_one(const InspectInput& input, const engine::MassOptions&
   return outcome;
 }
 
-/// The command: expand the inputs, inspect them on the jobs' threads, print in input order.
-int inspect(const InspectOptions& options, std::ostream& out, std::ostream& err) {
+/// The shard of --shard, after checking that -o names a .jsonl part and no other format is
+/// asked for; none without --shard.
+std::optional<Shard> inspect_shard(const InspectOptions& options) {
+  if (!options.shard) return std::nullopt;
+  const Shard shard = parse_shard(*options.shard);
+  if (!options.output) throw engine::InputError("--shard: -o FILE.jsonl is required (the part)");
+  if (options.output->extension() != ".jsonl") {
+    throw engine::InputError("--shard: -o " + options.output->string() +
+                             ": a part is JSON Lines; expected a name ending in .jsonl");
+  }
+  if (options.format_given && options.format != InspectFormat::jsonl) {
+    throw engine::InputError("--shard: a part is JSON Lines; drop --format (or use jsonl)");
+  }
+  return shard;
+}
+
+/// The command: expand the inputs, inspect them (a shard: its files) on the jobs' threads,
+/// print in input order, on stdout or into -o FILE.
+int inspect(const InspectOptions& given, std::ostream& out, std::ostream& err) {
+  const std::optional<Shard> shard = inspect_shard(given);
+  InspectOptions options = given;
+  if (shard) options.format = InspectFormat::jsonl;
   bool batch = false;
   const std::vector<InspectInput> inputs =
       expand_inspect_inputs(options.files, options.recursive, batch);
-  InspectPrinter printer(options, out, err, batch || inputs.size() > 1);
+  std::vector<std::size_t> items;
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    if (!shard || in_shard(i, inputs.size(), *shard, ShardSplit::kStrided)) items.push_back(i);
+  }
+  // -o is checked (and its temporary opened) before any file is read.
+  std::optional<AtomicFile> file;
+  if (options.output) {
+    std::vector<std::filesystem::path> files;
+    for (const InspectInput& input : inputs) files.push_back(input.file);
+    file.emplace(*options.output, files);
+  }
+  std::ostringstream buffer;
+  InspectPrinter printer(options, file ? buffer : out, err, batch || inputs.size() > 1);
   unsigned jobs = options.jobs;
   if (jobs == 0) jobs = std::max(1u, std::thread::hardware_concurrency());
   // Each file's outcome waits in its slot until every file before it is printed.
-  std::vector<InspectOutcome> outcomes(inputs.size());
+  std::vector<InspectOutcome> outcomes(items.size());
+  std::vector<std::string> digests(shard ? items.size() : 0);
   run_ordered(
-      inputs.size(), jobs,
-      [&](std::size_t i) { outcomes[i] = inspect_one(inputs[i], options.mass); },
-      [&](std::size_t i) { printer.print(inputs[i].file, std::exchange(outcomes[i], {})); });
-  return printer.finish();
+      items.size(), jobs,
+      [&](std::size_t k) {
+        outcomes[k] = inspect_one(inputs[items[k]], options.mass);
+        if (shard) digests[k] = digest_or_unreadable(inputs[items[k]].file);
+      },
+      [&](std::size_t k) {
+        printer.print(inputs[items[k]].file, std::exchange(outcomes[k], {}),
+                      shard ? nlohmann::json{{"item", items[k]}} : nlohmann::json());
+      });
+  const int status = printer.finish();
+  if (!file) return status;
+  // json prints nothing unless every file succeeded: then nothing is written either.
+  if (status != kExitDone && options.format == InspectFormat::json) return status;
+  if (shard) {
+    file->write(inspect_part_line(inspect_job(options, inputs, batch), *shard, inputs.size(), items,
+                                  digests));
+  }
+  file->write(buffer.str());
+  file->commit();
+  return status;
 }
 
 }  // namespace

@@ -44,23 +44,25 @@ InspectPrinter::InspectPrinter(const InspectOptions& options, std::ostream& out,
                                bool batch)
     : options_(options), out_(out), err_(err), batch_(batch) {}
 
-void InspectPrinter::print(const std::filesystem::path& file, InspectOutcome outcome) {
+void InspectPrinter::print(const std::filesystem::path& file, InspectOutcome outcome,
+                           const nlohmann::json& extra) {
   if (outcome.failure) std::rethrow_exception(outcome.failure);
   if (!outcome.report) {
     ++refused_;
     err_ << "tumble inspect: error: " << outcome.error << "\n";
     if (options_.format == InspectFormat::jsonl) {
-      const nlohmann::json line = {{"file", file.string()},
-                                   {"error", without_file(outcome.error, file.string())}};
+      nlohmann::json line = {{"file", file.string()},
+                             {"error", without_file(outcome.error, file.string())}};
+      if (extra.is_object()) line.update(extra);
       out_ << line.dump() << "\n" << std::flush;
     }
     return;
   }
   ++(outcome.report->warnings.empty() ? ok_ : warned_);
-  print_report(*outcome.report);
+  print_report(*outcome.report, extra);
 }
 
-void InspectPrinter::print_report(const engine::MeshReport& report) {
+void InspectPrinter::print_report(const engine::MeshReport& report, const nlohmann::json& extra) {
   switch (options_.format) {
     case InspectFormat::text:
       out_ << (ok_ + warned_ > 1 ? "\n" : "") << format_report(report);
@@ -68,9 +70,12 @@ void InspectPrinter::print_report(const engine::MeshReport& report) {
     case InspectFormat::json:
       json_.push_back(report_to_json(report));
       return;
-    case InspectFormat::jsonl:
-      out_ << report_to_json(report).dump() << "\n" << std::flush;
+    case InspectFormat::jsonl: {
+      nlohmann::json line = report_to_json(report);
+      if (extra.is_object()) line.update(extra);
+      out_ << line.dump() << "\n" << std::flush;
       return;
+    }
     default:
       break;
   }

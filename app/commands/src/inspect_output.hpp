@@ -32,15 +32,17 @@ class InspectPrinter {
   InspectPrinter(const InspectOptions& options, std::ostream& out, std::ostream& err, bool batch);
 
   /// Prints `outcome` of `file` (the report on stdout, an error line on stderr; jsonl: an
-  /// error object too). Rethrows a failure.
-  void print(const std::filesystem::path& file, InspectOutcome outcome);
+  /// error object too). Rethrows a failure. `extra` (an object) is merged into the jsonl
+  /// object (a part's "item").
+  void print(const std::filesystem::path& file, InspectOutcome outcome,
+             const nlohmann::json& extra = nullptr);
 
   /// Prints what waits for the end (the json document, when every file succeeded) and, for
   /// more than one file, the summary line on stderr. Returns the exit status.
   int finish();
 
  private:
-  void print_report(const engine::MeshReport& report);
+  void print_report(const engine::MeshReport& report, const nlohmann::json& extra);
 
   const InspectOptions& options_;
   std::ostream& out_;

@@ -12,84 +12,30 @@
 
 #include <CLI/CLI.hpp>
 
+#include <nlohmann/json.hpp>
+
 #include "app/analysis/gnuplot.hpp"
 #include "app/analysis/stability_plot.hpp"
 #include "app/analysis/stability_report.hpp"
 #include "app/analysis/stability_runner.hpp"
 #include "app/analysis/stability_suite.hpp"
 #include "app/commands/exit_status.hpp"
+#include "app/farm/shard.hpp"
 #include "app/scene/option_lists.hpp"
 #include "app/support/file_write.hpp"
 #include "app/support/interrupt_guard.hpp"
 #include "app/support/output_folder.hpp"
 #include "engine/input_error.hpp"
 #include "engine/integrators.hpp"
+#include "row_parts.hpp"
+#include "stability_part.hpp"
+#include "stability_plan.hpp"
 
 namespace tumble::app {
 namespace {
 
 using engine::InputError;
 namespace fs = std::filesystem;
-
-/// The integrators --integrators names (each name checked), or every one.
-std::vector<engine::IntegratorInfo> parse_integrators(const std::optional<std::string>& text) {
-  if (!text) return engine::integrator_catalog();
-  std::vector<engine::IntegratorInfo> chosen;
-  for (const engine::IntegratorInfo* info : parse_integrator_list(*text, "--integrators")) {
-    chosen.push_back(*info);
-  }
-  return chosen;
-}
-
-/// The cases to run: the suite's (filtered by --cases), then the scene files.
-std::vector<StabilityCase> gather_cases(const StabilityOptions& options, std::string& suite_name) {
-  std::optional<std::vector<double>> dts;
-  if (options.dts) dts = parse_positive_list(*options.dts, "--dts");
-  std::vector<StabilityCase> cases;
-  const bool use_suite = options.suite || options.cases || options.scenes.empty();
-  if (use_suite) {
-    StabilitySuite suite = stability_suite(options.suite.value_or("standard"));
-    suite_name = suite.name;
-    if (options.cases) {
-      for (const std::string& name : split_option_list(*options.cases, "--cases")) {
-        const auto found = std::find_if(suite.cases.begin(), suite.cases.end(),
-                                        [&](const StabilityCase& c) { return c.name == name; });
-        if (found == suite.cases.end()) {
-          std::string names;
-          for (const StabilityCase& c : suite.cases) names += (names.empty() ? "" : ", ") + c.name;
-          throw InputError("--cases: no case '" + name + "' in suite '" + suite.name +
-                           "'; expected one of: " + names);
-        }
-        cases.push_back(*found);
-      }
-    } else {
-      cases = std::move(suite.cases);
-    }
-  }
-  for (const fs::path& scene : options.scenes) cases.push_back(scene_case(scene, dts));
-  return cases;
-}
-
-/// Writes the CSV, the markdown report and the heat map into the temporary folder `temporary`;
-/// a failed write is named by its final name in `output` (nothing is written there).
-void write_outputs(const std::string& suite, const std::vector<StabilityCase>& cases,
-                   const std::vector<engine::IntegratorInfo>& integrators,
-                   const std::vector<StabilityRun>& runs, const fs::path& temporary,
-                   const fs::path& output) {
-  try {
-    write_text_file(temporary / "stability.csv", stability_csv(suite, cases, runs));
-    write_text_file(temporary / "stability.md",
-                    stability_markdown(suite, cases, integrators, runs));
-    draw_heat_map(stability_heat_map(cases, integrators, runs), temporary / "stability.png",
-                  temporary / "stability.svg");
-  } catch (const WriteError& error) {
-    throw output_write_error(error, temporary, output);
-  }
-}
-
-/// A stability output: stability.md under its title (and the suite), beside stability.csv.
-const OutputFolderKind kStabilityOutput{"stability", "stability.md", "# tumble stability",
-                                        "stability.csv"};
 
 int list_suites(std::ostream& out) {
   for (const SuiteListing& suite : stability_suite_listing()) {
@@ -99,21 +45,36 @@ int list_suites(std::ostream& out) {
 }
 
 /// Runs every case under every integrator at each of its dts, in the order the outputs read
-/// them (stability_report.hpp), with one progress line per case on `err`. Stops early, with
-/// the runs so far, when `guard` caught a signal.
+/// them (stability_report.hpp), with one progress line per case on `err`; with a shard, only
+/// the runs of that shard (every N-th of the sweep), a case's reference only when one of its
+/// runs is the shard's. Stops early, with the runs so far, when `guard` caught a signal.
 std::vector<StabilityRun> run_sweep(const std::vector<StabilityCase>& cases,
                                     const std::vector<engine::IntegratorInfo>& integrators,
-                                    const InterruptGuard& guard, std::ostream& err) {
+                                    const std::optional<Shard>& shard, const InterruptGuard& guard,
+                                    std::ostream& err) {
+  const std::size_t total = stability_run_count(cases, integrators.size());
+  const auto mine = [&](std::size_t run) {
+    return !shard || in_shard(run, total, *shard, ShardSplit::kStrided);
+  };
   std::vector<StabilityRun> runs;
+  std::size_t first = 0;  // the sweep's number of the case's first run
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const StabilityCase& c = cases[k];
-    err << "tumble stability: [" << k + 1 << "/" << cases.size() << "] " << c.name << ": "
-        << integrators.size() * c.dts.size() << " runs\n"
+    const std::size_t count = integrators.size() * c.dts.size();
+    std::size_t taken = 0;
+    for (std::size_t i = first; i < first + count; ++i) taken += mine(i);
+    err << "tumble stability: [" << k + 1 << "/" << cases.size() << "] " << c.name << ": " << taken
+        << " runs\n"
         << std::flush;
     if (guard.interrupted()) return runs;
+    if (taken == 0) {
+      first += count;
+      continue;
+    }
     const StabilityReference reference = stability_reference(c);
     for (const engine::IntegratorInfo& info : integrators) {
       for (const double dt : c.dts) {
+        if (!mine(first++)) continue;
         if (guard.interrupted()) return runs;
         StabilityRun run =
             run_stability_case(c, info, dt, reference, [&guard] { return guard.interrupted(); });
@@ -138,33 +99,54 @@ void print_summary(const std::vector<StabilityRun>& runs, std::size_t case_count
       << "stability.svg\n";
 }
 
+/// Removes the temporary folder of an interrupted run.
+int interrupted_run(const fs::path& temporary) {
+  std::error_code ignored;
+  fs::remove_all(temporary, ignored);
+  return kExitInterrupted;
+}
+
 int stability(const StabilityOptions& options, const InterruptGuard& guard, std::ostream& out,
               std::ostream& err) {
   // Options, cases and the output folder are checked before any run.
-  if (!options.output) throw InputError("-o DIR is required (or --list-suites)");
-  const std::vector<engine::IntegratorInfo> integrators = parse_integrators(options.integrators);
+  std::optional<Shard> shard;
+  if (options.shard) shard = parse_shard(*options.shard);
+  if (!options.output) {
+    throw InputError(shard ? "--shard: -o DIR is required (the folder of the part)"
+                           : "-o DIR is required (or --list-suites)");
+  }
+  const std::vector<engine::IntegratorInfo> integrators =
+      parse_stability_integrators(options.integrators);
   std::string suite;
-  const std::vector<StabilityCase> cases = gather_cases(options, suite);
-  if (!gnuplot_available()) throw InputError("gnuplot is not installed (needed for the heat map)");
+  const std::vector<StabilityCase> cases = gather_stability_cases(options, suite);
+  // A part has no heat map: only the merge needs gnuplot.
+  if (!shard && !gnuplot_available()) {
+    throw InputError("gnuplot is not installed (needed for the heat map)");
+  }
+  const std::size_t total = stability_run_count(cases, integrators.size());
+  const nlohmann::json job = shard ? stability_job(options) : nlohmann::json();
   const fs::path output = *options.output;
-  const fs::path temporary = start_output_folder(output, kStabilityOutput);
+  const fs::path temporary =
+      start_output_folder(output, shard ? stability_part_kind() : kStabilityOutput);
   try {
-    const std::vector<StabilityRun> runs = run_sweep(cases, integrators, guard, err);
-    if (guard.interrupted()) {
-      std::error_code ignored;
-      fs::remove_all(temporary, ignored);
-      return kExitInterrupted;
-    }
+    const std::vector<StabilityRun> runs = run_sweep(cases, integrators, shard, guard, err);
+    if (guard.interrupted()) return interrupted_run(temporary);
 
     // The outputs, then the folder into place.
-    write_outputs(suite, cases, integrators, runs, temporary, output);
-    if (guard.interrupted()) {
-      std::error_code ignored;
-      fs::remove_all(temporary, ignored);
-      return kExitInterrupted;
+    if (shard) {
+      write_stability_part(suite, cases, runs, shard_items(total, *shard), job, *shard, total,
+                           temporary, output);
+    } else {
+      write_stability_folder(suite, cases, integrators, runs, temporary, output);
     }
+    if (guard.interrupted()) return interrupted_run(temporary);
     finish_output_folder(temporary, output);
-    print_summary(runs, cases.size(), output, out);
+    if (shard) {
+      out << "tumble stability: shard " << shard->text() << ": " << runs.size() << " of " << total
+          << " runs; wrote " << output.string() << " (a part for tumble merge)\n";
+    } else {
+      print_summary(runs, cases.size(), output, out);
+    }
   } catch (...) {
     std::error_code ignored;
     fs::remove_all(temporary, ignored);
@@ -200,7 +182,12 @@ CLI::App& add_stability_command(CLI::App& cli, StabilityOptions& options) {
       "Scene files added as cases (alone: only they run, unless --suite or --cases is given)");
   command.add_option_function<std::string>(
       "-o,--output", [&](const std::string& value) { options.output = value; },
-      "Output folder DIR (written atomically: .DIR.tmp-PID renamed at the end)");
+      "Output folder DIR (written atomically: .DIR.tmp-PID renamed at the end); with --shard, "
+      "the folder of the part");
+  command.add_option_function<std::string>(
+      "--shard", [&](const std::string& value) { options.shard = value; },
+      "I/N: make only the I-th of N shards of the runs (I from 0; every N-th run of the sweep) "
+      "and write -o DIR as a part: its rows and part.json, for tumble merge");
   command.add_flag("--list-suites", options.list_suites, "List the built-in suites, then exit");
   return command;
 }

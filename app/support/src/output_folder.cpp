@@ -18,15 +18,16 @@ using engine::InputError;
 namespace {
 
 /// True when every entry of `dir` is a regular file (not a link) of a kind the commands write:
-/// a report, a CSV, a plot.
-bool holds_only_outputs(const fs::path& dir) {
+/// a report, a CSV, a plot, or the kind's report file itself (a part's part.json).
+bool holds_only_outputs(const fs::path& dir, const OutputFolderKind& kind) {
   std::error_code error;
   fs::directory_iterator entry(dir, error);
   for (; !error && entry != fs::directory_iterator(); entry.increment(error)) {
     const fs::path extension = entry->path().extension();
     std::error_code type_error;
     if (!entry->is_regular_file(type_error) || entry->is_symlink(type_error) ||
-        (extension != ".md" && extension != ".csv" && extension != ".png" && extension != ".svg")) {
+        (extension != ".md" && extension != ".csv" && extension != ".png" && extension != ".svg" &&
+         entry->path().filename() != kind.report)) {
       return false;
     }
   }
@@ -37,7 +38,7 @@ bool holds_only_outputs(const fs::path& dir) {
 bool replaceable(const fs::path& dir, const OutputFolderKind& kind) {
   std::error_code error;
   if (fs::is_empty(dir, error) && !error) return true;
-  if (!holds_only_outputs(dir)) return false;
+  if (!holds_only_outputs(dir, kind)) return false;
   std::ifstream report(dir / kind.report);
   std::string first;
   std::getline(report, first);

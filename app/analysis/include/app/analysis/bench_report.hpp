@@ -14,6 +14,13 @@
 
 namespace tumble::app {
 
+/// The workers of one run of cases: threads pinned one per core.
+struct BenchWorkers {
+  std::size_t workers = 0;
+  std::vector<int> cores_used;
+  std::size_t cores_available = 0;
+};
+
 /// Everything the outputs are made from.
 struct BenchOutcome {
   std::vector<BenchScene> scenes;
@@ -23,6 +30,9 @@ struct BenchOutcome {
   std::size_t workers = 0;  ///< worker threads, one pinned core each
   std::vector<int> cores_used;
   std::size_t cores_available = 0;
+  /// Merged from shards (`tumble merge`): each shard's workers, in shard order (the report
+  /// then says so instead of naming one run's cores); empty for one run.
+  std::vector<BenchWorkers> shards;
 };
 
 /// The columns of results.csv, in order.
@@ -31,6 +41,10 @@ const std::vector<std::string>& results_columns();
 /// The integrators of scene `scene`'s cases, in order of first appearance (the row order of
 /// the report and the curve order of the plots).
 std::vector<std::string> integrators_of(const BenchOutcome& outcome, std::size_t scene);
+
+/// results.csv's text: a header, then one row per case of `outcome.cases` (see
+/// write_results_csv).
+std::string results_csv(const BenchOutcome& outcome);
 
 /// Writes results.csv: a header, then one row per case (17 significant digits; the error
 /// columns are empty for blown-up runs).

@@ -29,6 +29,7 @@ struct BenchOptions {
   std::optional<std::string> duration;     ///< s
   std::optional<std::string> repeat;       ///< timed runs per case (default 3)
   std::optional<std::string> jobs;         ///< worker threads, capped at the cores (default 1)
+  std::optional<std::string> shard;        ///< "I/N": only that shard's cases, written as a part
   std::filesystem::path output;
 };
 

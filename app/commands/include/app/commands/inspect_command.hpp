@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,8 +33,13 @@ struct InspectOptions {
   InspectFormat format = InspectFormat::text;
   /// The frame of the XML formats' inertia: the mesh file's axes or the principal axes.
   robot::InertialFrame frame = robot::InertialFrame::mesh;
-  bool recursive = false;  ///< directories: descend into sub-directories
-  unsigned jobs = 1;       ///< files inspected at once; 0: one per core
+  bool recursive = false;     ///< directories: descend into sub-directories
+  unsigned jobs = 1;          ///< files inspected at once; 0: one per core
+  bool format_given = false;  ///< --format, --json or --jsonl was given
+  /// -o FILE: the output written there (atomically) instead of on stdout.
+  std::optional<std::filesystem::path> output;
+  /// "I/N": only every N-th file of the list from the I-th, written to -o FILE.jsonl as a part.
+  std::optional<std::string> shard;
 };
 
 /// Adds the `inspect` subcommand and its options to `cli`, filling `options` when parsed.

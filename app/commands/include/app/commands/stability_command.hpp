@@ -25,6 +25,7 @@ struct StabilityOptions {
   std::optional<std::string> cases;        ///< comma-separated built-in case names
   std::vector<std::filesystem::path> scenes;
   std::optional<std::filesystem::path> output;
+  std::optional<std::string> shard;  ///< "I/N": only that shard's runs, written as a part
   bool list_suites = false;
 };
 
