@@ -14,6 +14,7 @@
 #include "app/commands/exit_status.hpp"
 #include "app/commands/inertials_command.hpp"
 #include "app/commands/inspect_command.hpp"
+#include "app/commands/merge_command.hpp"
 #include "app/commands/simulate_command.hpp"
 #include "app/commands/stability_command.hpp"
 #include "command_line.hpp"
@@ -66,6 +67,8 @@ int main(int argc, char** argv) {
   add_placeholder(cli, tumble::app::kViewSummary);
   tumble::app::InertialsOptions inertials_options;
   CLI::App& inertials = tumble::app::add_inertials_command(cli, inertials_options);
+  tumble::app::MergeOptions merge_options;
+  CLI::App& merge = tumble::app::add_merge_command(cli, merge_options);
 
   try {
     cli.parse(argc, argv);
@@ -78,6 +81,7 @@ int main(int argc, char** argv) {
   if (inertials.parsed()) {
     return tumble::app::run_inertials(inertials_options, std::cout, std::cerr);
   }
+  if (merge.parsed()) return tumble::app::run_merge(merge_options, std::cout, std::cerr);
   if (bench.parsed()) return tumble::app::run_bench(bench_options, std::cout, std::cerr);
   if (stability.parsed()) {
     return tumble::app::run_stability(stability_options, std::cout, std::cerr);
