@@ -250,12 +250,17 @@ void draw_frames(Comparison& comparison, render::Renderer& renderer, render::Ima
     if (guard.interrupted()) break;
     for (Run& run : comparison.runs) run.job->advance_to(index);
     if (comparison.reference) comparison.reference->job->advance_to(index);
-    if (index < range.first) continue;
+    // The frame before the range is drawn and dropped: the first frame a renderer draws for a
+    // grid differs from later ones in a few hundred pixels of text (the panel's fit runs before
+    // the font is at its size), so without it --frames A:B and --shard would not match a full
+    // run's frame A.
+    if (index + 1 < range.first) continue;
     if (comparison.layout == CompareLayout::kGrid) {
       draw_grid_frame(comparison, renderer, tile, frame);
     } else {
       renderer.render(overlay_frame(comparison.runs, *comparison.reference), frame);
     }
+    if (index < range.first) continue;
     sink.write(frame);
     bar.update(index + 1 - range.first);
   }

@@ -14,7 +14,8 @@ namespace tumble {
 /// "gif" (palette built from the stream itself); empty for anything else.
 inline std::vector<std::string> ffmpeg_encoder_arguments(std::string_view format) {
   if (format == "mp4") {
-    return {"-c:v", "libx264", "-preset", "veryfast", "-pix_fmt", "yuv420p", "-f", "mp4"};
+    return {"-c:v",     "libx264",  "-preset", "veryfast", "-x264-params",
+            "mbtree=0", "-pix_fmt", "yuv420p", "-f",       "mp4"};
   }
   if (format == "webm") {
     return {"-c:v",     "libvpx-vp9", "-deadline", "realtime", "-cpu-used", "8",
