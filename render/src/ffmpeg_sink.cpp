@@ -20,6 +20,7 @@
 #include "output_paths.hpp"
 #include "tumble/errors.hpp"
 #include "tumble/file_checks.hpp"
+#include "tumble/video_encoding.hpp"
 #include "unique_fd.hpp"
 
 extern char** environ;
@@ -32,20 +33,11 @@ namespace {
 std::vector<std::string> encoder_arguments(SinkKind kind) {
   switch (kind) {
     case SinkKind::kMp4:
-      return {"-c:v", "libx264", "-preset", "veryfast", "-pix_fmt", "yuv420p", "-f", "mp4"};
+      return ffmpeg_encoder_arguments("mp4");
     case SinkKind::kWebm:
-      return {"-c:v",     "libvpx-vp9", "-deadline", "realtime", "-cpu-used", "8",
-              "-row-mt",  "1",          "-b:v",      "0",        "-crf",      "32",
-              "-pix_fmt", "yuv420p",    "-f",        "webm"};
+      return ffmpeg_encoder_arguments("webm");
     case SinkKind::kGif:
-      // One pass: split the stream, build a palette from one copy and apply it to the other.
-      return {"-filter_complex",
-              "[0:v]split[a][b];[a]palettegen=stats_mode=diff[p];[b][p]paletteuse=dither=bayer:"
-              "bayer_scale=4",
-              "-loop",
-              "0",
-              "-f",
-              "gif"};
+      return ffmpeg_encoder_arguments("gif");
     case SinkKind::kPngSequence:
       break;
   }
@@ -184,13 +176,16 @@ class FfmpegSink final : public ImageSink {
   void spawn(SinkKind kind) {
     char size[64];
     std::snprintf(size, sizeof size, "%dx%d", options_.width, options_.height);
-    char rate[64];
-    std::snprintf(rate, sizeof rate, "%.6g", options_.fps);
+    std::string rate = ffmpeg_rate(options_.fps);
     std::vector<std::string> arguments = {
         "ffmpeg", "-hide_banner", "-nostdin", "-nostats", "-loglevel", "error",
         "-y",     "-f",           "rawvideo", "-pix_fmt", "rgba",      "-s",
         size,     "-r",           rate,       "-i",       "-"};
     for (std::string& argument : encoder_arguments(kind)) arguments.push_back(std::move(argument));
+    if (!options_.part_manifest.empty()) {
+      // A shard's segment says what it is in its container (MP4 ilst, Matroska tags).
+      arguments.insert(arguments.end(), {"-metadata", "comment=" + options_.part_manifest});
+    }
     arguments.push_back(temporary_.string());
     std::vector<char*> argv;
     for (std::string& argument : arguments) argv.push_back(argument.data());

@@ -27,7 +27,24 @@ std::string frame_name(std::size_t index) {
   return name;
 }
 
-/// Whether every entry of an existing directory is a frame of an earlier sequence. Throws
+/// The manifest file of a PNG folder that is one part of a sharded job.
+constexpr const char* kPartManifestName = "part.json";
+
+/// Writes `text` to `file` whole; throws tumble::InputError naming `target` on any failure.
+void write_manifest(const std::filesystem::path& file, const std::string& text,
+                    const std::filesystem::path& target) {
+  std::FILE* out = std::fopen(file.c_str(), "wb");
+  bool good = out != nullptr && std::fwrite(text.data(), 1, text.size(), out) == text.size();
+  const int error = errno;
+  if (out != nullptr && std::fclose(out) != 0) good = false;
+  if (!good) {
+    throw InputError("cannot write '" + (target / kPartManifestName).string() +
+                     "': " + std::strerror(error != 0 ? error : errno));
+  }
+}
+
+/// Whether every entry of an existing directory is a frame of an earlier sequence (or the
+/// manifest of an earlier part). Throws
 /// tumble::InputError when the directory cannot be listed.
 bool holds_only_frames(const std::filesystem::path& directory) {
   std::error_code error;
@@ -35,8 +52,8 @@ bool holds_only_frames(const std::filesystem::path& directory) {
   for (; !error && entry != std::filesystem::directory_iterator(); entry.increment(error)) {
     const std::string name = entry->path().filename().string();
     std::error_code type_error;
-    if (!entry->is_regular_file(type_error) || !name.starts_with("frame_") ||
-        !name.ends_with(".png")) {
+    if (!entry->is_regular_file(type_error) ||
+        ((!name.starts_with("frame_") || !name.ends_with(".png")) && name != kPartManifestName)) {
       return false;
     }
   }
@@ -103,6 +120,9 @@ class PngSequenceSink final : public ImageSink {
     join_workers();
     try {
       rethrow_failure();
+      if (!options_.part_manifest.empty()) {
+        write_manifest(temporary_ / kPartManifestName, options_.part_manifest, target_);
+      }
       const std::filesystem::path old = temporary_.string() + "-old";
       const bool replacing = std::filesystem::exists(destination_);
       if (replacing) std::filesystem::rename(destination_, old);

@@ -32,6 +32,7 @@
 #include "app/commands/exit_status.hpp"
 #include "command_line.hpp"
 #include "video_options_cli.hpp"
+#include "video_part.hpp"
 
 #include "app/analysis/blow_up.hpp"
 #include "app/support/interrupt_guard.hpp"
@@ -253,12 +254,17 @@ void draw_frames(Comparison& comparison, render::Renderer& renderer, render::Ima
     if (guard.interrupted()) break;
     for (Run& run : comparison.runs) run.job->advance_to(index);
     if (comparison.reference) comparison.reference->job->advance_to(index);
-    if (index < range.first) continue;
+    // The frame before the range is drawn and dropped: the first frame a renderer draws for a
+    // grid differs from later ones in a few hundred pixels of text (the panel's fit runs before
+    // the font is at its size), so without it --frames A:B and --shard would not match a full
+    // run's frame A.
+    if (index + 1 < range.first) continue;
     if (comparison.layout == CompareLayout::kGrid) {
       draw_grid_frame(comparison, renderer, tile, frame);
     } else {
       renderer.render(overlay_frame(comparison.runs, *comparison.reference), frame);
     }
+    if (index < range.first) continue;
     sink.write(frame);
     bar.update(index + 1 - range.first);
   }
@@ -310,9 +316,16 @@ int compare_scene(const CompareOptions& options, const InterruptGuard& guard, st
 
   // Integrators, layout, scene and options; then the output. All fail before any mesh is read.
   Comparison comparison = plan_comparison(options);
+  const RenderPlan& first = comparison.runs.front().plan;
+  nlohmann::json job_options = frame_settings_json(comparison.frame_settings);
+  job_options["integrators"] = comparison_integrators(options.integrators);
+  job_options["layout"] = options.layout;
+  job_options["dt"] = first.scene.dt;
+  const std::string manifest = shard_video_frames(
+      options, "compare", first.scene, first.total_frames, job_options, comparison.range);
   std::unique_ptr<render::ImageSink> sink =
       open_render_output(options, comparison.frame_settings, comparison.range.first,
-                         scene_inputs(comparison.runs.front().plan.scene));
+                         scene_inputs(first.scene), manifest);
 
   // One renderer for every job; the scene is compiled (its meshes read) once, as the runs
   // differ only in their settings.

@@ -81,6 +81,7 @@ int main(int argc, char** argv) {
   if (inertials.parsed()) {
     return tumble::app::run_inertials(inertials_options, std::cout, std::cerr);
   }
+  if (merge.parsed()) return tumble::app::run_merge(merge_options, std::cout, std::cerr);
   if (bench.parsed()) return tumble::app::run_bench(bench_options, std::cout, std::cerr);
   if (stability.parsed()) {
     return tumble::app::run_stability(stability_options, std::cout, std::cerr);

@@ -22,6 +22,7 @@
 #include "engine/simulation.hpp"
 #include "render/image_sink.hpp"
 #include "video_options_cli.hpp"
+#include "video_part.hpp"
 
 namespace tumble::app {
 namespace {
@@ -38,9 +39,14 @@ int render_scene(const RenderOptions& options, const InterruptGuard& guard, std:
   const auto start = std::chrono::steady_clock::now();
 
   // Options and scene, then the output: both fail before any mesh is read.
-  const RenderPlan plan = plan_render(options);
-  std::unique_ptr<render::ImageSink> sink =
-      open_render_output(options, plan.settings, plan.frames.first, scene_inputs(plan.scene));
+  RenderPlan plan = plan_render(options);
+  nlohmann::json job_options = frame_settings_json(plan.settings);
+  job_options["integrator"] = plan.scene.integrator;
+  job_options["dt"] = plan.scene.dt;
+  const std::string manifest = shard_video_frames(options, "render", plan.scene, plan.total_frames,
+                                                  job_options, plan.frames);
+  std::unique_ptr<render::ImageSink> sink = open_render_output(
+      options, plan.settings, plan.frames.first, scene_inputs(plan.scene), manifest);
 
   // Meshes, simulation, renderer.
   RenderJob job(plan);

@@ -59,6 +59,13 @@ void add_video_options(CLI::App& command, VideoOptions& options, const std::stri
           "on (the default): meshes of more than 20,000 triangles are drawn from simplified "
           "copies whose outline is under a pixel off; off: always the full mesh")
       ->type_name("on|off");
+  command
+      .add_option_function<std::string>(
+          "--shard", [&](const std::string& value) { options.shard = value; },
+          "Render only the I-th of N contiguous parts of the frames (of --frames A:B if given; "
+          "I from 0) into a part that tumble merge joins: a PNG folder with part.json, or a "
+          ".mp4/.webm segment with its manifest inside")
+      ->type_name("I/N");
   command.add_flag("-q,--quiet", options.quiet,
                    "No progress bar and no summary line (warnings and errors still print)");
 }

@@ -7,6 +7,7 @@
 #include <iterator>
 #include <map>
 
+#include "app/support/child_process.hpp"
 #include "app/support/file_write.hpp"
 #include "tumble/errors.hpp"
 
@@ -82,6 +83,31 @@ std::string shard_list(const std::vector<int>& indexes, int count) {
     text += (text.empty() ? "" : ", ") + Shard{index, count}.text();
   }
   return text;
+}
+
+/// A video part's manifest: its container's comment tag, which `--shard` sets (MP4: the
+/// ilst comment atom; WebM: the Matroska COMMENT tag), read with one small ffprobe call.
+PartManifest read_video_manifest(const std::filesystem::path& part) {
+  const std::string name = part.string();
+  ChildResult probe;
+  try {
+    probe = run_child({"ffprobe", "-v", "error", "-show_entries", "format_tags=comment", "-of",
+                       "default=noprint_wrappers=1:nokey=1", name});
+  } catch (const InputError& error) {
+    throw InputError(name + ": cannot read its part manifest: " + error.what());
+  }
+  if (probe.status != 0) {
+    throw InputError(name + ": not a readable video (ffprobe: " + last_lines(probe.err) + ")");
+  }
+  std::string comment = probe.out;
+  while (!comment.empty() && (comment.back() == '\n' || comment.back() == '\r')) comment.pop_back();
+  const json top = json::parse(comment, nullptr, false);
+  if (comment.empty() || top.is_discarded() || !top.is_object() || !top.contains("tumble_part")) {
+    throw InputError(name +
+                     ": not a tumble part (its comment tag holds no part manifest; "
+                     "render with --shard I/N)");
+  }
+  return parse_manifest(top, name);
 }
 
 }  // namespace
@@ -168,8 +194,10 @@ PartManifest read_part_manifest(const std::filesystem::path& part) {
   }
   std::ifstream in(part);
   if (!in) throw InputError("cannot read part '" + name + "'");
+  if (part.extension() == ".mp4" || part.extension() == ".webm") return read_video_manifest(part);
   if (part.extension() != ".jsonl") {
-    throw InputError(name + ": not a tumble part (expected a part folder or a .jsonl part)");
+    throw InputError(name +
+                     ": not a tumble part (expected a part folder, a .mp4, .webm or .jsonl part)");
   }
   std::string first;
   std::getline(in, first);

@@ -78,7 +78,7 @@ RenderSettings render_settings(const RenderOptions& options, const SceneDescript
 // change rather than quoting the encoder.
 std::unique_ptr<render::ImageSink> open_render_output(
     const VideoOptions& options, const RenderSettings& settings, std::size_t first_frame,
-    const std::vector<std::filesystem::path>& inputs) {
+    const std::vector<std::filesystem::path>& inputs, const std::string& part_manifest) {
   const render::SinkKind kind = render::sink_kind(options.output);  // InputError if unknown
   if ((kind == render::SinkKind::kMp4 || kind == render::SinkKind::kWebm) &&
       (settings.width % 2 != 0 || settings.height % 2 != 0)) {
@@ -94,6 +94,7 @@ std::unique_ptr<render::ImageSink> open_render_output(
   sink.fps = settings.fps;
   sink.first_index = first_frame;
   sink.inputs = inputs;
+  sink.part_manifest = part_manifest;
   return render::open_image_sink(options.output, sink);
 }
 

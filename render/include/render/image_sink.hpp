@@ -47,6 +47,10 @@ struct SinkOptions {
   /// The files the output was made from (scene, meshes): an output that is one of them (by
   /// device and inode, through links too) is refused, never overwritten.
   std::vector<std::filesystem::path> inputs;
+  /// When not empty, the output is one part of a sharded job and this text (its JSON manifest)
+  /// is stored with it: as `part.json` in a PNG folder, as the container's `comment` tag of a
+  /// video (read back with `ffprobe -show_entries format_tags=comment`).
+  std::string part_manifest;
 };
 
 /// Consumes frames in order; see the file comment for the naming rules.

@@ -1,7 +1,7 @@
 #pragma once
-/// @file `tumble merge PART... -o OUT`: the parts of a sharded job (`--shard I/N` of bench,
-/// stability, inspect, render, compare) checked to be of one job and to cover it exactly once,
-/// then joined into the output the unsharded command writes (README, "More than one machine").
+/// @file `tumble merge PART... -o OUT`: the parts of a sharded command (`--shard I/N`) checked
+/// to be one job's, each shard exactly once, and joined into the output the unsharded command
+/// would have written (README, "More than one machine").
 
 #include <filesystem>
 #include <iosfwd>
@@ -15,16 +15,16 @@ namespace tumble::app {
 
 /// What `tumble merge` was asked to do.
 struct MergeOptions {
-  std::vector<std::filesystem::path> parts;  ///< in any order (the manifests say which is which)
+  std::vector<std::filesystem::path> parts;
   std::filesystem::path output;
+  bool quiet = false;
 };
 
 /// Adds the `merge` subcommand and its options to `cli`, filling `options` when parsed.
 CLI::App& add_merge_command(CLI::App& cli, MergeOptions& options);
 
-/// Runs the command. Returns 0, or 1 with one line on `err` naming the part at fault (missing,
-/// duplicated, of another job or kind, edited) or the output that cannot be written; nothing
-/// is written at the output then.
+/// Runs the command. Returns 0, kExitInputError (1) with one line on `err` (a missing,
+/// duplicated or foreign part, named), or kExitInterrupted (nothing written).
 int run_merge(const MergeOptions& options, std::ostream& out, std::ostream& err);
 
 }  // namespace tumble::app

@@ -12,7 +12,8 @@
 /// says what this part holds (kind-specific: file names, frame range, columns).
 ///
 /// Where it is kept: a folder part (PNG frames, bench or stability rows) holds it as
-/// `part.json`; a JSON Lines part has it as its first line.
+/// `part.json`; a JSON Lines part has it as its first line; an MP4 or WebM segment holds it
+/// (compact JSON) as its container's `comment` tag (ffmpeg `-metadata comment=...`).
 
 #include <cstddef>
 #include <filesystem>
@@ -66,7 +67,8 @@ void write_folder_manifest(const std::filesystem::path& folder, const PartManife
 std::string jsonl_manifest_line(const PartManifest& manifest);
 
 /// Reads the manifest of the part at `part`: `part.json` in a folder, the first line of a
-/// `.jsonl` file. Throws InputError naming the part if it is not a tumble part or its manifest
+/// `.jsonl` file, the comment tag of a `.mp4` or `.webm` file (through ffprobe, which must be on
+/// PATH). Throws InputError naming the part if it is not a tumble part or its manifest
 /// is bad.
 PartManifest read_part_manifest(const std::filesystem::path& part);
 

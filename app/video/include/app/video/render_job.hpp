@@ -42,6 +42,7 @@ struct VideoOptions {
   std::optional<double> time_scale;   ///< simulated seconds per second of video
   std::optional<double> font_scale;   ///< overlay text size relative to the frame's own
   std::optional<bool> lod;            ///< --lod on|off
+  std::optional<std::string> shard;   ///< "I/N": the I-th of N contiguous parts of the frames
   bool quiet = false;
 };
 
@@ -134,9 +135,10 @@ class RenderJob {
 /// Opens the output of `options` (its name and --size) for frames of `settings`' size before
 /// anything is rendered; videos need even sides, and the output may not be one of `inputs`
 /// (scene_inputs: the scene and its meshes). Throws tumble::InputError naming the path (unknown
-/// kind, odd sides, an input or a device as the output, filesystem, ffmpeg).
+/// kind, odd sides, an input or a device as the output, filesystem, ffmpeg). A non-empty
+/// `part_manifest` makes the output a shard's part (render::SinkOptions::part_manifest).
 std::unique_ptr<render::ImageSink> open_render_output(
     const VideoOptions& options, const RenderSettings& settings, std::size_t first_frame,
-    const std::vector<std::filesystem::path>& inputs);
+    const std::vector<std::filesystem::path>& inputs, const std::string& part_manifest = {});
 
 }  // namespace tumble::app
