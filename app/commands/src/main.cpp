@@ -12,6 +12,7 @@
 
 #include "app/commands/bench_command.hpp"
 #include "app/commands/exit_status.hpp"
+#include "app/commands/farm_command.hpp"
 #include "app/commands/inertials_command.hpp"
 #include "app/commands/inspect_command.hpp"
 #include "app/commands/simulate_command.hpp"
@@ -66,6 +67,8 @@ int main(int argc, char** argv) {
   add_placeholder(cli, tumble::app::kViewSummary);
   tumble::app::InertialsOptions inertials_options;
   CLI::App& inertials = tumble::app::add_inertials_command(cli, inertials_options);
+  tumble::app::FarmOptions farm_options;
+  CLI::App& farm = tumble::app::add_farm_command(cli, farm_options);
 
   try {
     cli.parse(argc, argv);
@@ -82,6 +85,7 @@ int main(int argc, char** argv) {
   if (stability.parsed()) {
     return tumble::app::run_stability(stability_options, std::cout, std::cerr);
   }
+  if (farm.parsed()) return tumble::app::run_farm(farm_options, std::cout, std::cerr);
   // A drawing command after an option (`tumble --x render`) reaches here: CLI11 has already
   // refused the unknown option, so this is only a safeguard.
   std::cerr << "tumble: error: the command must come first\n";
