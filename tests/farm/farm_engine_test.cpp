@@ -13,6 +13,13 @@
 namespace tumble::testing {
 namespace {
 
+// Skips the test (GTEST_SKIP returns from the test itself) when this build cannot shard.
+#define SKIP_WITHOUT_SHARDING()                                                         \
+  do {                                                                                  \
+    const std::string missing = sharding_missing();                                     \
+    if (!missing.empty()) GTEST_SKIP() << missing << " (issue 16's --shard and merge)"; \
+  } while (false)
+
 using ::testing::HasSubstr;
 
 /// A test's own folder, and the runs of tumble in it.
@@ -31,10 +38,6 @@ class FarmEngine : public ::testing::Test {
   void run_locally(const std::string& command) const {
     const CommandResult local = tumble(command);
     ASSERT_EQ(local.status, 0) << local.err;
-  }
-  void skip_without_sharding() {
-    const std::string missing = sharding_missing();
-    if (!missing.empty()) GTEST_SKIP() << missing << " (issue 16's --shard and merge)";
   }
 
   std::filesystem::path dir_;
@@ -65,21 +68,27 @@ TEST_F(FarmSlurm, ClusterRunsAnArrayJobOfFrameRanges) {
   std::ofstream(dir_ / "frames.sbatch")
       << "#!/bin/bash\n#SBATCH --array=0-1\nstart=$((SLURM_ARRAY_TASK_ID * 40))\n"
       << "exec " << tumble_executable() << " render " << demo_scene() << " " << kDemoRenderOptions
-      << " --frames $start:$((start + 40)) -o " << path("farmed/") << "\n";
+      << " --frames $start:$((start + 40)) -o " << path("farmed-") << "$SLURM_ARRAY_TASK_ID/\n";
   const CommandResult submitted =
       run_command("cd '" + dir_.string() + "' && sbatch --wait -o slurm-%A_%a.out frames.sbatch");
   ASSERT_EQ(submitted.status, 0) << submitted.err << submitted.out;
   const auto local = directory_entries(dir_ / "local");
   ASSERT_EQ(local.size(), 81u);
-  const auto farmed = directory_entries(dir_ / "farmed");
-  ASSERT_EQ(farmed.size(), 80u) << "frames 0 to 79";
-  for (const std::string& frame : farmed) {
-    EXPECT_EQ(read_text(dir_ / "farmed" / frame), read_text(dir_ / "local" / frame)) << frame;
+  std::size_t frames = 0;
+  for (const char* task : {"farmed-0", "farmed-1"}) {
+    const auto farmed = directory_entries(dir_ / task);
+    EXPECT_EQ(farmed.size(), 40u) << task;
+    for (const std::string& frame : farmed) {
+      ++frames;
+      EXPECT_EQ(read_text(dir_ / task / frame), read_text(dir_ / "local" / frame)) << frame;
+    }
   }
+  EXPECT_EQ(frames, 80u) << "frames 0 to 79";
+  EXPECT_EQ(directory_entries(dir_ / "farmed-1").front(), "frame_000040.png");
 }
 
 TEST_F(FarmSlurm, ShardedRenderEqualsTheLocalRender) {
-  skip_without_sharding();
+  SKIP_WITHOUT_SHARDING();
   const std::string render = "render " + demo_scene() + " " + kDemoRenderOptions;
   run_locally(render + " -o local.mp4");
   const CommandResult farmed = farm("--shards 2 -- tumble " + render + " -o 'farmed demo.mp4'");
@@ -91,7 +100,7 @@ TEST_F(FarmSlurm, ShardedRenderEqualsTheLocalRender) {
 }
 
 TEST_F(FarmSlurm, ShardedBenchEqualsTheLocalBench) {
-  skip_without_sharding();
+  SKIP_WITHOUT_SHARDING();
   const std::string bench = "bench " + demo_scene() + " " + kDemoBenchOptions;
   run_locally(bench + " -o local");
   const CommandResult farmed = farm("--shards 2 -- tumble " + bench + " -o farmed");
@@ -127,7 +136,7 @@ class FarmParallel : public FarmEngine {
 };
 
 TEST_F(FarmParallel, ShardedRenderEqualsTheLocalRender) {
-  skip_without_sharding();
+  SKIP_WITHOUT_SHARDING();
   const std::string render = "render " + demo_scene() + " " + kDemoRenderOptions;
   run_locally(render + " -o local.webm");
   const CommandResult farmed = farm("--shards 3 -- tumble " + render + " -o \"it's.webm\"");
@@ -136,7 +145,7 @@ TEST_F(FarmParallel, ShardedRenderEqualsTheLocalRender) {
 }
 
 TEST_F(FarmParallel, ShardedBenchEqualsTheLocalBench) {
-  skip_without_sharding();
+  SKIP_WITHOUT_SHARDING();
   const std::string bench = "bench " + demo_scene() + " " + kDemoBenchOptions;
   run_locally(bench + " -o local");
   const CommandResult farmed = farm("--shards 2 -- tumble " + bench + " -o 'farmed bench'");

@@ -55,9 +55,18 @@ void add_slurm_options(CLI::App& slurm, FarmOptions& options) {
 
 void add_parallel_options(CLI::App& parallel, FarmOptions& options) {
   parallel
-      .add_option("-S,--hosts", options.slots.hosts,
-                  "ssh hosts for GNU parallel, comma-separated (default: this machine)")
-      ->delimiter(',')
+      .add_option_function<std::string>(
+          "-S,--hosts",
+          [&options](const std::string& list) {
+            std::size_t begin = 0;
+            for (std::size_t comma; (comma = list.find(',', begin)) != std::string::npos;
+                 begin = comma + 1) {
+              options.slots.hosts.push_back(list.substr(begin, comma - begin));
+            }
+            options.slots.hosts.push_back(list.substr(begin));
+          },
+          "ssh hosts for GNU parallel, comma-separated; ':' is this machine (default: only "
+          "this machine)")
       ->type_name("HOST,...");
   parallel
       .add_option("--jobs", options.slots.jobs,

@@ -1,6 +1,8 @@
 // Submitting the scripts of farm_slurm.cpp with sbatch, and following the jobs with scontrol.
 #include "app/farm/farm_slurm_run.hpp"
 
+#include <algorithm>
+#include <cstdlib>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -58,15 +60,17 @@ void check_shards(const FarmJob& job, const SlurmJobIds& ids) {
   if (shown.status != 0) return;  // gone from the controller: the merge job's state says more
   const std::vector<std::string> states = job_states(shown.out);
   const std::vector<std::string> tasks = array_task_ids(shown.out);
-  std::string failed;
-  std::string first;
+  std::vector<std::pair<long, std::string>> ended;  // task, state; scontrol lists them backwards
   for (std::size_t i = 0; i < states.size(); ++i) {
     if (!final_job_state(states[i])) return;
-    if (states[i] != "COMPLETED") {
-      failed += (failed.empty() ? "" : ", ") + tasks[i] + " " + states[i];
-      if (first.empty()) first = tasks[i];
-    }
+    if (states[i] != "COMPLETED") ended.emplace_back(std::atol(tasks[i].c_str()), states[i]);
   }
+  std::sort(ended.begin(), ended.end());
+  std::string failed;
+  for (const auto& [task, state] : ended) {
+    failed += (failed.empty() ? "" : ", ") + std::to_string(task) + " " + state;
+  }
+  const std::string first = ended.empty() ? "" : std::to_string(ended.front().first);
   if (failed.empty()) return;
   slurm_tool({"scancel", ids.merge});
   const std::filesystem::path log =
