@@ -12,6 +12,7 @@
 
 #include "app/commands/bench_command.hpp"
 #include "app/commands/exit_status.hpp"
+#include "app/commands/farm_command.hpp"
 #include "app/commands/inertials_command.hpp"
 #include "app/commands/inspect_command.hpp"
 #include "app/commands/merge_command.hpp"
@@ -69,6 +70,8 @@ int main(int argc, char** argv) {
   CLI::App& inertials = tumble::app::add_inertials_command(cli, inertials_options);
   tumble::app::MergeOptions merge_options;
   CLI::App& merge = tumble::app::add_merge_command(cli, merge_options);
+  tumble::app::FarmOptions farm_options;
+  CLI::App& farm = tumble::app::add_farm_command(cli, farm_options);
 
   try {
     cli.parse(argc, argv);
@@ -87,6 +90,7 @@ int main(int argc, char** argv) {
     return tumble::app::run_stability(stability_options, std::cout, std::cerr);
   }
   if (merge.parsed()) return tumble::app::run_merge(merge_options, std::cout, std::cerr);
+  if (farm.parsed()) return tumble::app::run_farm(farm_options, std::cout, std::cerr);
   // A drawing command after an option (`tumble --x render`) reaches here: CLI11 has already
   // refused the unknown option, so this is only a safeguard.
   std::cerr << "tumble: error: the command must come first\n";

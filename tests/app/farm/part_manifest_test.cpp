@@ -18,7 +18,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-using testing::HasSubstr;
+using ::testing::HasSubstr;
 
 PartManifest render_part(int index, int count) {
   PartManifest manifest;
@@ -86,7 +86,7 @@ TEST(PartManifest, RefusesBadFieldsNamingThem) {
     json bad = good;
     bad[json::json_pointer(pointer)] = nullptr;
     EXPECT_THAT(error_of([&] { parse_manifest(bad, "parts/a"); }),
-                testing::AllOf(testing::StartsWith("parts/a: "), HasSubstr(expected)))
+                testing::AllOf(::testing::StartsWith("parts/a: "), HasSubstr(expected)))
         << pointer;
   }
   json no_kind = good;

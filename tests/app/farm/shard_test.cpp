@@ -25,8 +25,8 @@ TEST(Shard, RefusesWhatIsNotIOfN) {
       parse_shard(text);
       ADD_FAILURE() << "accepted '" << text << "'";
     } catch (const InputError& error) {
-      EXPECT_THAT(error.what(), testing::StartsWith("--shard: expected I/N with 0 <= I < N"));
-      EXPECT_THAT(error.what(), testing::HasSubstr("got '" + std::string(text) + "'"));
+      EXPECT_THAT(error.what(), ::testing::StartsWith("--shard: expected I/N with 0 <= I < N"));
+      EXPECT_THAT(error.what(), ::testing::HasSubstr("got '" + std::string(text) + "'"));
     }
   }
 }
@@ -37,7 +37,7 @@ TEST(Shard, NamesTheOptionItWasGiven) {
         try {
           parse_shard("9/3", "--tasks");
         } catch (const InputError& error) {
-          EXPECT_THAT(error.what(), testing::StartsWith("--tasks: "));
+          EXPECT_THAT(error.what(), ::testing::StartsWith("--tasks: "));
           throw;
         }
       },
