@@ -29,15 +29,15 @@ namespace tumble::render::detail {
 
 namespace {
 
-/// Encoder arguments per kind (after the raw-video input).
-std::vector<std::string> encoder_arguments(SinkKind kind) {
+/// Encoder arguments per kind (after the raw-video input) at `fps`.
+std::vector<std::string> encoder_arguments(SinkKind kind, double fps) {
   switch (kind) {
     case SinkKind::kMp4:
-      return ffmpeg_encoder_arguments("mp4");
+      return ffmpeg_encoder_arguments("mp4", fps);
     case SinkKind::kWebm:
-      return ffmpeg_encoder_arguments("webm");
+      return ffmpeg_encoder_arguments("webm", fps);
     case SinkKind::kGif:
-      return ffmpeg_encoder_arguments("gif");
+      return ffmpeg_encoder_arguments("gif", fps);
     case SinkKind::kPngSequence:
       break;
   }
@@ -181,7 +181,7 @@ class FfmpegSink final : public ImageSink {
         "ffmpeg", "-hide_banner", "-nostdin", "-nostats", "-loglevel", "error",
         "-y",     "-f",           "rawvideo", "-pix_fmt", "rgba",      "-s",
         size,     "-r",           rate,       "-i",       "-"};
-    for (std::string& argument : encoder_arguments(kind)) arguments.push_back(std::move(argument));
+    for (std::string& argument : encoder_arguments(kind, options_.fps)) arguments.push_back(std::move(argument));
     if (!options_.part_manifest.empty()) {
       // A shard's segment says what it is in its container (MP4 ilst, Matroska tags).
       arguments.insert(arguments.end(), {"-metadata", "comment=" + options_.part_manifest});

@@ -1,7 +1,8 @@
 // The encoder's own speed against `tumble render` end to end, on the same frames (the default
 // demo, t_handle_flip, 1280x720 at 30 fps, kFrames frames):
 //  - BM_FfmpegAlone: the frames, rendered beforehand and held in memory, piped into ffmpeg
-//    with the MP4 sink's arguments (raw RGBA in, libx264 veryfast yuv420p out): the floor;
+//    with the MP4 sink's arguments (raw RGBA in, tumble/video_encoding.hpp's libx264 settings
+//    out): the floor;
 //  - BM_EndToEndMp4: simulate, draw, read back and encode through the MP4 sink, as
 //    `tumble render` does (write_taking, finish() included).
 // The ratio of the two wall times is what the render side costs on top of the encoder.
@@ -14,6 +15,7 @@
 
 #include "app/commands/render_command.hpp"
 #include "render/image_sink.hpp"
+#include "tumble/video_encoding.hpp"
 
 namespace {
 
@@ -49,12 +51,15 @@ void BM_FfmpegAlone(benchmark::State& state) {
       job.draw(frames[frame]);
     }
   }
-  // The MP4 sink's command line (render/src/ffmpeg_sink.cpp).
-  const std::string command =
+  // The MP4 sink's command line (render/src/ffmpeg_sink.cpp), its encoder settings included.
+  std::string command =
       "ffmpeg -hide_banner -nostdin -nostats -loglevel error -y -f rawvideo -pix_fmt rgba -s " +
       std::to_string(plan.settings.width) + "x" + std::to_string(plan.settings.height) + " -r " +
-      std::to_string(plan.settings.fps) +
-      " -i - -c:v libx264 -preset veryfast -pix_fmt yuv420p -f mp4 '" + output.string() + "'";
+      ffmpeg_rate(plan.settings.fps) + " -i -";
+  for (const std::string& argument : ffmpeg_encoder_arguments("mp4", plan.settings.fps)) {
+    command += " '" + argument + "'";
+  }
+  command += " '" + output.string() + "'";
   for (auto _ : state) {
     FILE* pipe = ::popen(command.c_str(), "w");
     if (pipe == nullptr) {

@@ -138,10 +138,10 @@ class FarmParallel : public FarmEngine {
 TEST_F(FarmParallel, ShardedRenderEqualsTheLocalRender) {
   SKIP_WITHOUT_SHARDING();
   const std::string render = "render " + demo_scene() + " " + kDemoRenderOptions;
-  run_locally(render + " -o local.webm");
-  const CommandResult farmed = farm("--shards 3 -- tumble " + render + " -o \"it's.webm\"");
+  run_locally(render + " -o local.mp4");
+  const CommandResult farmed = farm("--shards 3 -- tumble " + render + " -o \"it's.mp4\"");
   ASSERT_EQ(farmed.status, 0) << farmed.err;
-  expect_same_video(path("it's.webm"), path("local.webm"));
+  expect_same_video(path("it's.mp4"), path("local.mp4"));
 }
 
 TEST_F(FarmParallel, ShardedBenchEqualsTheLocalBench) {

@@ -86,7 +86,9 @@ inline double psnr(const std::vector<unsigned char>& a, const std::vector<unsign
   return 10.0 * std::log10(255.0 * 255.0 / mse);
 }
 
-/// The farmed video has the local one's frames, each within PSNR 45 dB of it.
+/// The farmed video has the local one's frames. The issue asks for each within PSNR 45 dB of
+/// it; MP4 segments start on the whole video's key frames and are coded from their own frames
+/// alone (tumble/video_encoding.hpp), so every decoded frame is the local one exactly.
 inline void expect_same_video(const std::filesystem::path& farmed,
                               const std::filesystem::path& local) {
   const DecodedVideo a = decode_video(farmed);
@@ -95,10 +97,11 @@ inline void expect_same_video(const std::filesystem::path& farmed,
   ASSERT_EQ(a.height, b.height);
   ASSERT_EQ(a.frames.size(), b.frames.size());
   ASSERT_GT(a.frames.size(), 10u);
-  double worst = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < a.frames.size(); ++i)
-    worst = std::min(worst, psnr(a.frames[i], b.frames[i]));
-  EXPECT_GE(worst, 45.0) << "the worst frame's PSNR";
+  for (std::size_t i = 0; i < a.frames.size(); ++i) {
+    EXPECT_TRUE(a.frames[i] == b.frames[i])
+        << "frame " << i << ": PSNR " << psnr(a.frames[i], b.frames[i]) << " dB";
+  }
+  EXPECT_LT(psnr(a.frames.front(), b.frames.back()), 35.0) << "the frames do change";
 }
 
 /// The rows of a bench's results.csv, timing columns (seconds_*, ns_per_step) blanked.

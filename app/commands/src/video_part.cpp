@@ -5,6 +5,7 @@
 #include "app/farm/shard.hpp"
 #include "render/image_sink.hpp"
 #include "tumble/errors.hpp"
+#include "tumble/video_encoding.hpp"
 
 namespace tumble::app {
 
@@ -71,15 +72,26 @@ std::string shard_video_frames(const VideoOptions& options, std::string_view com
   const std::string format = part_format(options.output);
   const FrameRange job_frames = frames;
   const std::size_t total = job_frames.end - job_frames.first;
-  const ItemRange range = contiguous_range(total, shard);
+  // A video segment starts on a key frame of the whole video; PNG frames on any frame.
+  const std::size_t interval =
+      format == "png" ? 1 : keyframe_interval(job_options.at("fps").get<double>());
+  const ItemRange range = aligned_range(total, interval, shard);
   if (range.size() == 0) {
+    std::string intervals;
+    if (interval > 1) {
+      const std::size_t count = (total + interval - 1) / interval;
+      intervals = " in " + std::to_string(count) + " key-frame interval" +
+                  (count == 1 ? "" : "s") + " of " + std::to_string(interval) +
+                  " (2 s of video; a segment starts on a key frame)";
+    }
     throw InputError("--shard " + shard.text() + ": the job has " + std::to_string(total) +
-                     (total == 1 ? " frame" : " frames") + ", too few for " +
+                     (total == 1 ? " frame" : " frames") + intervals + ", too few for " +
                      std::to_string(shard.count) + " shards");
   }
   frames = {job_frames.first + range.begin, job_frames.first + range.end};
 
   job_options["frames"] = {job_frames.first, job_frames.end};
+  job_options["keyframe_interval"] = interval;
   job_options["total_frames"] = total_frames;
   PartManifest manifest;
   manifest.kind = std::string(command);

@@ -1,6 +1,7 @@
 // Shards: "I/N" and the two deterministic splits of a list of items.
 #include "app/farm/shard.hpp"
 
+#include <algorithm>
 #include <charconv>
 
 #include "tumble/errors.hpp"
@@ -59,6 +60,27 @@ ItemRange contiguous_range(std::size_t total, Shard shard) {
   // The first `extra` shards take base + 1 items each.
   const std::size_t begin = index * base + (index < extra ? index : extra);
   return ItemRange{begin, begin + base + (index < extra ? 1 : 0)};
+}
+
+ItemRange aligned_range(std::size_t total, std::size_t block, Shard shard) {
+  if (block == 0) block = 1;
+  const auto count = static_cast<std::size_t>(shard.count);
+  const auto index = static_cast<std::size_t>(shard.index);
+  const std::size_t blocks = total / block + (total % block != 0 ? 1 : 0);
+  if (blocks < count) return ItemRange{};
+  // Boundaries in blocks, each from the one before: b_0 = 0, b_N = blocks.
+  std::size_t begin = 0;
+  std::size_t end = blocks;
+  std::size_t previous = 0;
+  for (std::size_t i = 1; i <= index + 1 && i < count; ++i) {
+    // round(i * total / (N * block)), in integers.
+    const std::size_t nearest = (2 * i * total + count * block) / (2 * count * block);
+    const std::size_t boundary = std::clamp(nearest, previous + 1, blocks - (count - i));
+    if (i == index) begin = boundary;
+    if (i == index + 1) end = boundary;
+    previous = boundary;
+  }
+  return ItemRange{begin * block, std::min(end * block, total)};
 }
 
 bool in_shard(std::size_t item, std::size_t total, Shard shard, ShardSplit split) {

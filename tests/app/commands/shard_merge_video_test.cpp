@@ -143,20 +143,22 @@ class ShardMergeVideo : public testing::CommandTest {
   }
 };
 
-// Frames 90:108 of the demo (the handle mid-flip) at its own 1280x720, in 3 shards of 6. At
-// this size the merged video's frames are within 46.8 dB (measured minimum) of the unsharded
-// video's; the two are separate encodings (x264's rate control looks ahead, and each segment
-// starts on a key frame), so they are not bit-identical.
-TEST_F(ShardMergeVideo, Mp4SegmentsJoinWithoutReEncodingWithinPsnr45OfTheUnshardedVideo) {
-  render_parts("render", "--aa off --frames 90:108", "full.mp4", ".mp4", 3);
+// Frames 9:27 of the demo at 3 frames/s (key frames every 6) at its own 1280x720, in 3 shards
+// of 6. Each segment is coded from its own key-frame intervals alone (constant quantiser,
+// closed GOPs of a fixed length, a motion search that does not depend on the thread count:
+// tumble/video_encoding.hpp), so the joined video is the unsharded one: the same packets, but
+// for the parameter sets each segment's key frame carries in-band, and the same decoded frames.
+TEST_F(ShardMergeVideo, Mp4SegmentsJoinWithoutReEncodingIntoTheUnshardedVideo) {
+  render_parts("render", "--aa off --fps 3 --frames 9:27", "full.mp4", ".mp4", 3);
   for (int i = 0; i < 3; ++i) {
     const std::string part = path("part-" + std::to_string(i) + ".mp4");
     EXPECT_EQ(probe_video(part), "h264,1280,720,6") << part;
     EXPECT_EQ(first_frame(part), "1,I") << part;  // a key frame first
     const nlohmann::json manifest = nlohmann::json::parse(comment_tag(part));
     EXPECT_EQ(manifest["shard"]["index"], i);
-    EXPECT_EQ(manifest["payload"]["frames"], nlohmann::json({90 + 6 * i, 96 + 6 * i}));
-    EXPECT_EQ(manifest["job"]["options"]["frames"], nlohmann::json({90, 108}));
+    EXPECT_EQ(manifest["payload"]["frames"], nlohmann::json({9 + 6 * i, 15 + 6 * i}));
+    EXPECT_EQ(manifest["job"]["options"]["frames"], nlohmann::json({9, 27}));
+    EXPECT_EQ(manifest["job"]["options"]["keyframe_interval"], 6);
   }
   // Given out of order: merge sorts by the manifests.
   const CommandResult merge = tumble("merge" + parts(".mp4", {2, 0, 1}) + " -o " + path("m.mp4"));
@@ -166,8 +168,9 @@ TEST_F(ShardMergeVideo, Mp4SegmentsJoinWithoutReEncodingWithinPsnr45OfTheUnshard
   EXPECT_EQ(probe_video(path("m.mp4")), "h264,1280,720,18");
   EXPECT_EQ(comment_tag(path("m.mp4")), "");  // the whole is no part
 
-  // Not re-encoded: the merged packets are the segments' packets, in order; only each
-  // segment's key frame may carry its parameter sets in-band (measured: 38 bytes more).
+  // Not re-encoded, and coded as the whole: the merged packets are the segments' packets and
+  // the unsharded video's, in order; a segment's key frame may carry its parameter sets
+  // in-band once joined (measured: 38 bytes more).
   std::vector<long> joined;
   std::vector<bool> key;
   for (int i = 0; i < 3; ++i) {
@@ -178,13 +181,21 @@ TEST_F(ShardMergeVideo, Mp4SegmentsJoinWithoutReEncodingWithinPsnr45OfTheUnshard
     }
   }
   const std::vector<std::string> merged_sizes = packet_sizes(path("m.mp4"));
+  const std::vector<std::string> full_sizes = packet_sizes(path("full.mp4"));
   ASSERT_EQ(merged_sizes.size(), joined.size());
+  ASSERT_EQ(full_sizes.size(), joined.size());
   for (std::size_t k = 0; k < joined.size(); ++k) {
     const long extra = std::stol(merged_sizes[k]) - joined[k];
+    const long unsharded = std::stol(full_sizes[k]) - joined[k];
     if (key[k]) {
       EXPECT_TRUE(extra >= 0 && extra < 100) << "packet " << k << ": " << extra;
+      // A segment's first packet also carries x264's SEI of its settings (measured: 638
+      // bytes), which the whole video has once, in its first packet.
+      EXPECT_TRUE(k == 0 ? unsharded == 0 : unsharded < 0 && unsharded > -1000)
+          << "packet " << k << ": " << unsharded;
     } else {
       EXPECT_EQ(extra, 0) << "packet " << k;
+      EXPECT_EQ(unsharded, 0) << "packet " << k;
     }
   }
 
@@ -192,15 +203,40 @@ TEST_F(ShardMergeVideo, Mp4SegmentsJoinWithoutReEncodingWithinPsnr45OfTheUnshard
   const auto full = decoded_frames(path("full.mp4"), 1280, 720);
   ASSERT_EQ(merged.size(), 18u);
   ASSERT_EQ(full.size(), 18u);
+  for (std::size_t k = 0; k < merged.size(); ++k) {
+    EXPECT_TRUE(merged[k] == full[k]) << "frame " << 9 + k << ": PSNR " << psnr(merged[k], full[k]);
+  }
+  // The frames do change: equality is not trivially met.
+  EXPECT_LT(psnr(merged[0], full[17]), 35.0);
+  EXPECT_TRUE(hidden_entries().empty());
+}
+
+// WebM segments start on the whole video's key frames too, but libvpx's realtime VP9 keeps
+// rate-control state across key frames, so the frames after a segment's first differ a little
+// from the unsharded video's (measured at 320x180, 3 segments: 36.7 dB RGB PSNR at the worst
+// frame). The test holds what is exact and bounds the rest below that.
+TEST_F(ShardMergeVideo, WebmSegmentsJoinNearTheUnshardedVideo) {
+  render_parts("render", "--size 320x180 --aa off --fps 10 --time-scale 2.5", "full.webm", ".webm",
+               3);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(first_frame(path("part-" + std::to_string(i) + ".webm")), "1,I") << i;
+  }
+  const CommandResult merge = tumble("merge" + parts(".webm", {0, 1, 2}) + " -o " + path("m.webm"));
+  ASSERT_EQ(merge.status, 0) << merge.err;
+  const auto merged = decoded_frames(path("m.webm"), 320, 180);
+  const auto full = decoded_frames(path("full.webm"), 320, 180);
+  ASSERT_EQ(merged.size(), 81u);
+  ASSERT_EQ(full.size(), 81u);
   double lowest = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < merged.size(); ++k) {
     const double db = psnr(merged[k], full[k]);
-    EXPECT_GE(db, 45.0) << "frame " << 90 + k;
+    // The first segment and every key frame are the unsharded video's exactly.
+    if (k < 20 || k % 20 == 0) {
+      EXPECT_TRUE(merged[k] == full[k]) << "frame " << k;
+    }
     lowest = std::min(lowest, db);
   }
-  // Frames of another time are far apart: the bound is not trivially met.
-  EXPECT_LT(psnr(merged[0], full[17]), 35.0);
-  EXPECT_TRUE(hidden_entries().empty());
+  EXPECT_GE(lowest, 35.0);
   std::cout << "lowest PSNR " << lowest << " dB\n";
 }
 
@@ -208,10 +244,10 @@ TEST_F(ShardMergeVideo, Mp4SegmentsJoinWithoutReEncodingWithinPsnr45OfTheUnshard
 // merged to MP4 they are encoded once.
 TEST_F(ShardMergeVideo, PngPartsMergeToTheUnshardedFramesAndEncodeOnce) {
   render_parts("render", "--size 320x180 --aa off --frames 30:44", "full/", "/", 3);
-  // Parts keep the global frame numbers: 30:35, 35:40, 40:44 (the first 14 % 3 = 2 take one
-  // more), each with its manifest.
+  // Parts keep the global frame numbers: 30:35, 35:39, 39:44 (starts nearest 30 + 14 i / 3),
+  // each with its manifest.
   EXPECT_EQ(directory_entries(dir_ / "part-1").front(), png_name(35));
-  EXPECT_EQ(directory_entries(dir_ / "part-1").size(), 6u);  // 5 frames + part.json
+  EXPECT_EQ(directory_entries(dir_ / "part-1").size(), 5u);  // 4 frames + part.json
   EXPECT_TRUE(std::filesystem::exists(dir_ / "part-2" / "part.json"));
   EXPECT_FALSE(std::filesystem::exists(dir_ / "part-2" / png_name(44)));
 
@@ -239,7 +275,8 @@ TEST_F(ShardMergeVideo, PngPartsMergeToTheUnshardedFramesAndEncodeOnce) {
 
 // compare: PNG parts merge to the unsharded comparison's frames exactly; MP4 parts join.
 TEST_F(ShardMergeVideo, CompareShardsMergeLikeTheUnshardedComparison) {
-  const std::string options = "--integrators rk4,lie-euler --size 320x180 --frames 0:9";
+  // At 3 frames/s, a key frame every 6: the WebM segments are frames 0:6 and 6:9.
+  const std::string options = "--integrators rk4,lie-euler --size 320x180 --fps 3 --frames 0:9";
   render_parts("compare", options, "full/", "/", 2);
   const CommandResult merge = tumble("merge" + parts("/", {1, 0}) + " -o " + path("merged/"));
   ASSERT_EQ(merge.status, 0) << merge.err;
@@ -265,7 +302,7 @@ TEST_F(ShardMergeVideo, CompareShardsMergeLikeTheUnshardedComparison) {
 
 TEST_F(ShardMergeVideo, MissingDuplicatedAndForeignPartsAreOneLineErrors) {
   const std::string options = "--size 320x180 --aa off --frames 0:6";
-  render_parts("render", options, "full.mp4", ".mp4", 3);
+  render_parts("render", options + " --fps 1", "full.mp4", ".mp4", 3);  // a key frame every 2
   const CommandResult missing = tumble("merge" + parts(".mp4", {0, 2}) + " -o " + path("m.mp4"));
   EXPECT_EQ(missing.status, 1);
   EXPECT_EQ(missing.err, "tumble merge: error: shard 1/3 missing (given: 0/3, 2/3)\n");
@@ -278,13 +315,13 @@ TEST_F(ShardMergeVideo, MissingDuplicatedAndForeignPartsAreOneLineErrors) {
 
   // Another frame rate is another job, even with the same frames.
   const CommandResult other = tumble("render " + demo_scene() + " " + options +
-                                     " --fps 24 -q --shard 1/3 -o " + path("other.mp4"));
+                                     " --fps 0.5 -q --shard 1/3 -o " + path("other.mp4"));
   ASSERT_EQ(other.status, 0) << other.err;
   const CommandResult foreign = tumble("merge " + path("part-0.mp4") + " " + path("other.mp4") +
                                        " " + path("part-2.mp4") + " -o " + path("m.mp4"));
   EXPECT_EQ(foreign.status, 1);
   EXPECT_THAT(foreign.err, HasSubstr(path("other.mp4") + ": a part of another job than '" +
-                                     path("part-0.mp4") + "' (job field 'options.fps': 24"));
+                                     path("part-0.mp4") + "' (job field 'options.fps': 0.5"));
 
   // A whole video is no part.
   const CommandResult whole = tumble("merge " + path("full.mp4") + " -o " + path("m.mp4"));
@@ -309,9 +346,16 @@ TEST_F(ShardMergeVideo, BadShardsAndIncompletePartsAreOneLineErrors) {
   EXPECT_EQ(range.status, 1);
   EXPECT_THAT(range.err, HasSubstr("--shard: expected I/N with 0 <= I < N"));
   const CommandResult few =
-      tumble("render " + scene + " --frames 0:2 --shard 2/3 -o " + path("a.mp4"));
+      tumble("render " + scene + " --frames 0:2 --shard 2/3 -o " + path("frames/"));
   EXPECT_EQ(few.status, 1);
   EXPECT_THAT(few.err, HasSubstr("--shard 2/3: the job has 2 frames, too few for 3 shards"));
+  // A segment starts on a key frame: 130 frames at 30 frames/s are 3 intervals of 60.
+  const CommandResult intervals =
+      tumble("render " + scene + " --frames 0:130 --shard 0/4 -o " + path("a.mp4"));
+  EXPECT_EQ(intervals.status, 1);
+  EXPECT_THAT(intervals.err, HasSubstr("--shard 0/4: the job has 130 frames in 3 key-frame "
+                                       "intervals of 60 (2 s of video; a segment starts on a key "
+                                       "frame), too few for 4 shards"));
 
   // A PNG part that lost a frame is named with the frame.
   render_parts("render", "--size 320x180 --aa off --frames 0:4", "full/", "/", 2);
@@ -323,6 +367,7 @@ TEST_F(ShardMergeVideo, BadShardsAndIncompletePartsAreOneLineErrors) {
   EXPECT_FALSE(std::filesystem::exists(dir_ / "m.mp4"));
   EXPECT_FALSE(std::filesystem::exists(dir_ / "a.mp4"));
   EXPECT_FALSE(std::filesystem::exists(dir_ / "a.gif"));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "frames"));
   EXPECT_TRUE(hidden_entries().empty());
 }
 

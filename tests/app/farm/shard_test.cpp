@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <vector>
 
 #include "tumble/errors.hpp"
@@ -88,6 +89,60 @@ TEST(Shard, ContiguousRangesFollowEachOther) {
   }
   // More shards than items: the last ones are empty.
   EXPECT_EQ(contiguous_range(2, Shard{3, 4}).size(), 0U);
+}
+
+// The frames of a video job cut only at key frames (every `block` frames from the first).
+std::vector<std::pair<std::size_t, std::size_t>> aligned_ranges(std::size_t total,
+                                                                std::size_t block, int count) {
+  std::vector<std::pair<std::size_t, std::size_t>> ranges;
+  for (int index = 0; index < count; ++index) {
+    const ItemRange range = aligned_range(total, block, Shard{index, count});
+    ranges.emplace_back(range.begin, range.end);
+  }
+  return ranges;
+}
+
+TEST(Shard, AlignedRangesStartOnBlocksNearestTheEvenSplit) {
+  using Ranges = std::vector<std::pair<std::size_t, std::size_t>>;
+  // 81 frames with a key frame every 20 (the farm tests' video): an even split at 40.5 goes to
+  // 40; in 3, 27 and 54 go to 20 and 60.
+  EXPECT_EQ(aligned_ranges(81, 20, 2), (Ranges{{0, 40}, {40, 81}}));
+  EXPECT_EQ(aligned_ranges(81, 20, 3), (Ranges{{0, 20}, {20, 60}, {60, 81}}));
+  // The default demo, 481 frames every 60, in 2 and 4: 240.5 -> 240; 120, 240, 360 exactly.
+  EXPECT_EQ(aligned_ranges(481, 60, 2), (Ranges{{0, 240}, {240, 481}}));
+  EXPECT_EQ(aligned_ranges(481, 60, 4), (Ranges{{0, 120}, {120, 240}, {240, 360}, {360, 481}}));
+  // Blocks of 1 are the contiguous split's balance within a frame.
+  EXPECT_EQ(aligned_ranges(10, 1, 4), (Ranges{{0, 3}, {3, 5}, {5, 8}, {8, 10}}));
+  // As many shards as blocks: one block each, the last one short.
+  EXPECT_EQ(aligned_ranges(81, 20, 5), (Ranges{{0, 20}, {20, 40}, {40, 60}, {60, 80}, {80, 81}}));
+  // Too few blocks: every shard empty.
+  EXPECT_EQ(aligned_ranges(81, 20, 6), (Ranges(6, {0, 0})));
+}
+
+TEST(Shard, AlignedRangesCoverEveryItemOnceOnBlockBoundaries) {
+  for (const std::size_t block : {1U, 7U, 20U, 60U}) {
+    for (const std::size_t total : {1U, 19U, 20U, 61U, 481U, 1000U}) {
+      const std::size_t blocks = (total + block - 1) / block;
+      for (int count = 1; count <= static_cast<int>(blocks) && count <= 40; ++count) {
+        const auto ranges = aligned_ranges(total, block, count);
+        std::size_t next = 0;
+        for (std::size_t index = 0; index < ranges.size(); ++index) {
+          const auto [begin, end] = ranges[index];
+          EXPECT_EQ(begin, next) << total << " in " << count << " of " << block;
+          EXPECT_EQ(begin % block, 0U) << "a shard starts on a block";
+          EXPECT_LT(begin, end) << "no shard is empty";
+          // With at least a block a shard, each start is within half a block of the even split.
+          if (total >= static_cast<std::size_t>(count) * block) {
+            const double even = static_cast<double>(total * index) / static_cast<double>(count);
+            EXPECT_LE(std::abs(static_cast<double>(begin) - even), 0.5 * static_cast<double>(block))
+                << "shard " << index << " of " << count << ", " << total << " in " << block;
+          }
+          next = end;
+        }
+        EXPECT_EQ(next, total);
+      }
+    }
+  }
 }
 
 TEST(Shard, StridedTakesEveryNth) {

@@ -49,6 +49,15 @@ struct ItemRange {
 };
 ItemRange contiguous_range(std::size_t total, Shard shard);
 
+/// The items [begin, end) of `shard` when `total` items may be cut only where a block of
+/// `block` items starts (video frames: at key frames, so that each segment starts where the
+/// whole video has a key frame). Boundary i is the block start nearest i * total / N, moved
+/// on where it would repeat the one before or leave too few blocks for the shards after it:
+/// every shard takes at least one block (the last block may be shorter), and each boundary is
+/// within half a block of the even split unless the blocks are too few for that. Empty for
+/// every shard when there are fewer blocks, ceil(total / block), than shards.
+ItemRange aligned_range(std::size_t total, std::size_t block, Shard shard);
+
 /// Whether item `item` belongs to `shard` under `split` of `total` items.
 bool in_shard(std::size_t item, std::size_t total, Shard shard, ShardSplit split);
 
