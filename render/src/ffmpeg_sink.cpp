@@ -181,7 +181,8 @@ class FfmpegSink final : public ImageSink {
         "ffmpeg", "-hide_banner", "-nostdin", "-nostats", "-loglevel", "error",
         "-y",     "-f",           "rawvideo", "-pix_fmt", "rgba",      "-s",
         size,     "-r",           rate,       "-i",       "-"};
-    for (std::string& argument : encoder_arguments(kind, options_.fps)) arguments.push_back(std::move(argument));
+    for (std::string& argument : encoder_arguments(kind, options_.fps))
+      arguments.push_back(std::move(argument));
     if (!options_.part_manifest.empty()) {
       // A shard's segment says what it is in its container (MP4 ilst, Matroska tags).
       arguments.insert(arguments.end(), {"-metadata", "comment=" + options_.part_manifest});

@@ -106,8 +106,8 @@ VideoJob video_job(const std::vector<NamedManifest>& parts, const std::vector<st
     const NamedManifest& named = parts[index];
     const auto [begin, end] =
         frame_pair(named.manifest.payload, "frames", named.part, "payload.frames");
-    const ItemRange range = aligned_range(video.end - video.first,
-                                          interval.get<std::size_t>(), named.manifest.shard);
+    const ItemRange range =
+        aligned_range(video.end - video.first, interval.get<std::size_t>(), named.manifest.shard);
     if (begin != video.first + range.begin || end != video.first + range.end) {
       throw InputError(named.part.string() + ": holds frames " + range_text(begin, end) +
                        ", but shard " + named.manifest.shard.text() + " of frames " +
@@ -232,7 +232,8 @@ std::vector<std::string> ffmpeg_command(const VideoJob& video, const std::string
   } else if (format == "png") {
     command.insert(command.end(), {"-start_number", std::to_string(video.first), "-f", "image2"});
   } else {
-    for (std::string& argument : ffmpeg_encoder_arguments(format, video.fps)) command.push_back(argument);
+    for (std::string& argument : ffmpeg_encoder_arguments(format, video.fps))
+      command.push_back(argument);
   }
   command.push_back(format == "png" ? (result / "frame_%06d.png").string() : result.string());
   return command;

@@ -80,8 +80,8 @@ std::string shard_video_frames(const VideoOptions& options, std::string_view com
     std::string intervals;
     if (interval > 1) {
       const std::size_t count = (total + interval - 1) / interval;
-      intervals = " in " + std::to_string(count) + " key-frame interval" +
-                  (count == 1 ? "" : "s") + " of " + std::to_string(interval) +
+      intervals = " in " + std::to_string(count) + " key-frame interval" + (count == 1 ? "" : "s") +
+                  " of " + std::to_string(interval) +
                   " (2 s of video; a segment starts on a key frame)";
     }
     throw InputError("--shard " + shard.text() + ": the job has " + std::to_string(total) +

@@ -48,26 +48,19 @@ inline std::vector<std::string> ffmpeg_encoder_arguments(std::string_view format
   if (format == "mp4") {
     const unsigned cores = std::thread::hardware_concurrency();
     const std::string threads = std::to_string(std::max(2u, cores + cores / 2));
-    return {"-c:v",
-            "libx264",
-            "-preset",
-            "veryfast",
-            "-qp",
-            "21",
-            "-threads",
-            threads,
-            "-x264-params",
-            "keyint=" + gop + ":min-keyint=" + gop + ":scenecut=0:mvrange-thread=64",
-            "-pix_fmt",
-            "yuv420p",
-            "-f",
-            "mp4"};
+    return {
+        "-c:v",         "libx264",
+        "-preset",      "veryfast",
+        "-qp",          "21",
+        "-threads",     threads,
+        "-x264-params", "keyint=" + gop + ":min-keyint=" + gop + ":scenecut=0:mvrange-thread=64",
+        "-pix_fmt",     "yuv420p",
+        "-f",           "mp4"};
   }
   if (format == "webm") {
-    return {"-c:v",     "libvpx-vp9", "-deadline", "realtime", "-cpu-used",   "8",
-            "-row-mt",  "1",          "-b:v",      "0",        "-crf",        "32",
-            "-g",       gop,          "-keyint_min", gop,      "-pix_fmt",    "yuv420p",
-            "-f",       "webm"};
+    return {"-c:v",        "libvpx-vp9", "-deadline", "realtime", "-cpu-used", "8",   "-row-mt",
+            "1",           "-b:v",       "0",         "-crf",     "32",        "-g",  gop,
+            "-keyint_min", gop,          "-pix_fmt",  "yuv420p",  "-f",        "webm"};
   }
   if (format == "gif") {
     // One pass: split the stream, build a palette from one copy and apply it to the other.
