@@ -64,7 +64,8 @@ void add_video_options(CLI::App& command, VideoOptions& options, const std::stri
           "--shard", [&](const std::string& value) { options.shard = value; },
           "Render only the I-th of N contiguous parts of the frames (of --frames A:B if given; "
           "I from 0) into a part that tumble merge joins: a PNG folder with part.json, or a "
-          ".mp4/.webm segment with its manifest inside")
+          ".mp4/.webm segment with its manifest inside, starting on one of the whole video's "
+          "key frames (one every 2 s)")
       ->type_name("I/N");
   command.add_flag("-q,--quiet", options.quiet,
                    "No progress bar and no summary line (warnings and errors still print)");
