@@ -323,8 +323,12 @@ TEST_F(ViewCommand, RealKeyPressesFromXdotoolReachTheViewer) {
                                         "4.0 screenshot paused1.png\n"
                                         "4.5 screenshot paused2.png\n"
                                         "6.0 quit\n";
+  // Space once the viewer has taken playing.png (at most 60 s): its script clock starts with its
+  // window, which under AddressSanitizer and load took over 2.5 s to open, and a fixed wait from
+  // the launch then paused it before that screenshot. paused1.png at 4.0 s comes 3 s after.
   const std::string keys =
-      "sleep 2.5; xdotool search --sync --name '^tumble view$' windowfocus --sync key space; "
+      "timeout 60 sh -c 'until [ -e playing.png ]; do sleep 0.1; done'; "
+      "xdotool search --sync --name '^tumble view$' windowfocus --sync key space; "
       "sleep 1; xdotool search --name '^tumble view$' windowfocus --sync key ctrl+p";
   const auto result =
       run_command("cd '" + dir_.string() + "' && xvfb-run -a -s '-screen 0 1280x800x24' sh -c \"'" +
