@@ -192,20 +192,12 @@ std::string limits() {
 /// its own process, and under AddressSanitizer one takes about 0.8 s however small the file
 /// (the sanitizer's start and exit): 415 files one at a time outlasted the test's time limit.
 std::vector<CommandResult> run_all(const fs::path& root, const std::vector<std::string>& files) {
-  const fs::path dir = tumble::testing::fresh_directory("corpus_runs");
   std::vector<CommandResult> runs(files.size());
   std::atomic<std::size_t> next{0};
   const auto work = [&] {
     for (std::size_t i = next++; i < files.size(); i = next++) {
-      const fs::path out = dir / (std::to_string(i) + ".out");
-      const fs::path err = dir / (std::to_string(i) + ".err");
-      const std::string command = limits() + tumble::testing::tumble_executable() +
-                                  " inspect --json " + quoted(root / files[i]) + " >" +
-                                  quoted(out) + " 2>" + quoted(err) + " </dev/null";
-      const int raw = std::system(command.c_str());
-      runs[i].status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-      runs[i].out = tumble::testing::read_text(out);
-      runs[i].err = tumble::testing::read_text(err);
+      runs[i] = run_command(limits() + tumble::testing::tumble_executable() + " inspect --json " +
+                            quoted(root / files[i]));
     }
   };
   std::vector<std::thread> workers;
@@ -214,7 +206,6 @@ std::vector<CommandResult> run_all(const fs::path& root, const std::vector<std::
   }
   work();
   for (std::thread& worker : workers) worker.join();
-  fs::remove_all(dir);
   return runs;
 }
 

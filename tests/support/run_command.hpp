@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -48,9 +49,11 @@ inline std::filesystem::path fresh_directory(const std::string& name) {
   return dir;
 }
 
-/// Runs `command` through the shell with stdout and stderr captured to files.
+/// Runs `command` through the shell with stdout and stderr captured to files (a folder of
+/// their own for each call, so that threads may run commands at once).
 inline CommandResult run_command(const std::string& command) {
-  const auto dir = fresh_directory("cmd");
+  static std::atomic<unsigned> calls{0};
+  const auto dir = fresh_directory("cmd" + std::to_string(calls++));
   const auto out = dir / "out.txt";
   const auto err = dir / "err.txt";
   const std::string full = command + " >'" + out.string() + "' 2>'" + err.string() + "' </dev/null";
