@@ -23,6 +23,7 @@
 #endif
 
 #include "engine/input_error.hpp"
+#include "input_file.hpp"
 #include "split_in_two.hpp"
 #include "vertex_welding.hpp"
 
@@ -33,10 +34,6 @@ constexpr std::size_t kHeaderBytes = 84;    // 80 free bytes, then the triangle 
 constexpr std::size_t kRecordBytes = 50;    // normal, three corners, attribute word
 constexpr std::size_t kCornersOffset = 12;  // the corners follow the normal
 
-[[noreturn]] void fail(const std::filesystem::path& file, const std::string& problem) {
-  throw InputError(file.string() + ": " + problem);
-}
-
 /// The little-endian uint32 at `bytes` (a plain load on little-endian machines).
 std::uint32_t little_uint32(const unsigned char* bytes) {
   return std::uint32_t{bytes[0]} | std::uint32_t{bytes[1]} << 8 | std::uint32_t{bytes[2]} << 16 |
@@ -44,15 +41,8 @@ std::uint32_t little_uint32(const unsigned char* bytes) {
 }
 
 bool has_stl_extension(const std::filesystem::path& file) {
-  std::string extension = file.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension == ".stl";
+  return lower_extension(file) == ".stl";
 }
-
-struct CloseFile {
-  void operator()(std::FILE* stream) const { std::fclose(stream); }
-};
 
 /// The bytes of a file from `offset` on, mapped read-only where the system can (no copy, and
 /// no fresh pages to zero: on a 50 MB file those cost more than the welding), read into memory
@@ -114,7 +104,7 @@ std::optional<BinaryStl> read_binary_stl(const std::filesystem::path& file, std:
   // Claim only files named *.stl whose size is that of a binary STL (assimp chooses its reader
   // by the name first, so any other name is left to it).
   if (!has_stl_extension(file) || size < kHeaderBytes) return std::nullopt;
-  const std::unique_ptr<std::FILE, CloseFile> stream(std::fopen(file.string().c_str(), "rb"));
+  const CFile stream(std::fopen(file.string().c_str(), "rb"));
   if (!stream) fail(file, "cannot be opened for reading");
   unsigned char header[kHeaderBytes];
   if (std::fread(header, 1, kHeaderBytes, stream.get()) != kHeaderBytes) {
@@ -172,7 +162,7 @@ std::optional<BinaryStl> read_binary_stl(const std::filesystem::path& file, std:
 
 void check_binary_stl_size(const std::filesystem::path& file, std::uintmax_t size) {
   if (!has_stl_extension(file)) return;
-  const std::unique_ptr<std::FILE, CloseFile> stream(std::fopen(file.string().c_str(), "rb"));
+  const CFile stream(std::fopen(file.string().c_str(), "rb"));
   if (!stream) fail(file, "cannot be opened for reading");
   constexpr std::size_t kAsciiProbe = 500;  // the bytes assimp 5.2 tests for ASCII
   std::array<unsigned char, kHeaderBytes + kAsciiProbe> head{};

@@ -12,16 +12,13 @@
 #include <vector>
 
 #include "engine/input_error.hpp"
+#include "input_file.hpp"
 
 namespace tumble::engine::detail {
 namespace {
 
 constexpr std::size_t kHeaderLimit = 64 * 1024;  // headers longer than this are left to assimp
 constexpr std::uint64_t kMax = std::numeric_limits<std::uint64_t>::max();
-
-[[noreturn]] void fail(const std::filesystem::path& file, const std::string& problem) {
-  throw InputError(file.string() + ": " + problem);
-}
 
 std::uint64_t saturating_mul(std::uint64_t a, std::uint64_t b) {
   return (b != 0 && a > kMax / b) ? kMax : a * b;
@@ -30,21 +27,9 @@ std::uint64_t saturating_add(std::uint64_t a, std::uint64_t b) {
   return a > kMax - b ? kMax : a + b;
 }
 
-struct CloseFile {
-  void operator()(std::FILE* stream) const { std::fclose(stream); }
-};
-using File = std::unique_ptr<std::FILE, CloseFile>;
-
-std::string lower_extension(const std::filesystem::path& file) {
-  std::string extension = file.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension;
-}
-
 /// The file's first bytes (up to kHeaderLimit).
 std::string read_head(const std::filesystem::path& file) {
-  const File stream(std::fopen(file.string().c_str(), "rb"));
+  const CFile stream(std::fopen(file.string().c_str(), "rb"));
   if (!stream) fail(file, "cannot be opened for reading");
   std::string head(kHeaderLimit, '\0');
   head.resize(std::fread(head.data(), 1, head.size(), stream.get()));
@@ -56,7 +41,7 @@ std::string read_head(const std::filesystem::path& file) {
 /// counts below only ever need lower bounds) until it returns false.
 template <typename Line>
 void for_each_line(const std::filesystem::path& file, std::uint64_t offset, const Line& line) {
-  const File stream(std::fopen(file.string().c_str(), "rb"));
+  const CFile stream(std::fopen(file.string().c_str(), "rb"));
   if (!stream || std::fseek(stream.get(), static_cast<long>(offset), SEEK_SET) != 0) {
     fail(file, "cannot be opened for reading");
   }

@@ -29,6 +29,7 @@
 #include "declared_counts.hpp"
 #include "engine/input_error.hpp"
 #include "import_worker.hpp"
+#include "input_file.hpp"
 #include "isolated_import.hpp"
 #include "split_in_two.hpp"
 #include "vertex_welding.hpp"
@@ -36,11 +37,8 @@
 namespace tumble::engine {
 namespace {
 
+using detail::fail;
 using detail::split_in_two;
-
-[[noreturn]] void fail(const std::filesystem::path& file, const std::string& problem) {
-  throw InputError(file.string() + ": " + problem);
-}
 
 /// One line of assimp's error text.
 std::string single_line(std::string text) {

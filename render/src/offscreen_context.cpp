@@ -14,7 +14,9 @@
 
 namespace tumble::render {
 
-namespace {
+// The Impl's member types, in a named namespace: a type with internal linkage may not be a
+// member's type of a class with external linkage.
+namespace detail {
 
 /// Owns an OSMesa context: destroyed after every GL object of the Impl (declared first).
 struct OsmesaContextDeleter {
@@ -24,12 +26,19 @@ using OsmesaContextPtr = std::unique_ptr<osmesa_context, OsmesaContextDeleter>;
 
 /// A framebuffer object with a colour renderbuffer or texture and (optionally) a depth
 /// renderbuffer.
-struct Framebuffer {
+struct OffscreenFramebuffer {
   detail::GlFramebuffer fbo;
   detail::GlRenderbuffer colour;
   detail::GlTexture texture;  // instead of `colour` when a post-process samples the image
   detail::GlRenderbuffer depth;
 };
+
+}  // namespace detail
+
+namespace {
+
+using detail::OsmesaContextPtr;
+using Framebuffer = detail::OffscreenFramebuffer;
 
 /// Attaches a single-sampled RGBA8 texture, bilinear and clamped to the edge, as the bound
 /// FBO's colour (the scene renders into it and the post-process samples it).
@@ -93,11 +102,13 @@ void check_size(int width, int height) {
 
 struct OffscreenContext::Impl {
   // Members go in reverse order: the GL objects first, the context that owns them last.
-  OsmesaContextPtr context;
+  detail::OsmesaContextPtr context;
   std::uint8_t dummy_buffer[4 * 4 * 4] = {};  // the default framebuffer is never drawn to
-  Framebuffer draw;     // what the passes render into (multisampled when samples > 1)
-  Framebuffer resolve;  // single-sampled copy read back when drawing is multisampled
-  Framebuffer output;   // the post-process's result (draw's colour is then a texture)
+  detail::OffscreenFramebuffer draw;  // what the passes render into (multisampled when samples > 1)
+  detail::OffscreenFramebuffer
+      resolve;  // single-sampled copy read back when drawing is multisampled
+  detail::OffscreenFramebuffer
+      output;  // the post-process's result (draw's colour is then a texture)
   std::vector<std::uint8_t> bottom_up;  // glReadPixels rows, flipped into the Image
 
   /// The FBO draws go to for `target`.

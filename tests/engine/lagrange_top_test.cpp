@@ -263,11 +263,11 @@ TEST(LagrangeTop, ThePredicateRefusesWhatIsNotALagrangeTop) {
   BodyModel body = heavy_top();
   body.moments = Eigen::Vector3d(1.2, 1.25, 0.5);
   EXPECT_THAT(tumble::engine::lagrange_top_problem(body).value_or(""),
-              testing::HasSubstr("not a symmetric top"));
+              ::testing::HasSubstr("not a symmetric top"));
   body = heavy_top();
   body.center_offset = Eigen::Vector3d(0.01, 0.0, 0.5);
   EXPECT_THAT(tumble::engine::lagrange_top_problem(body).value_or(""),
-              testing::HasSubstr("not on a principal axis"));
+              ::testing::HasSubstr("not on a principal axis"));
   body = heavy_top();
   body.forces.emplace_back(tumble::engine::ConstantTorque{Eigen::Vector3d(0, 0, 1), false});
   EXPECT_FALSE(tumble::engine::is_lagrange_top(body));
@@ -303,8 +303,9 @@ TEST(LagrangeTop, TheExactIntegratorRunsAHeavyTopAndRefusesOtherForcedBodies) {
     tumble::engine::Simulation refused({sprung}, {start}, settings);
     ADD_FAILURE() << "a sprung top was accepted";
   } catch (const tumble::engine::InputError& error) {
-    EXPECT_THAT(error.what(), testing::HasSubstr("the exact integrator needs a torque-free body"));
-    EXPECT_THAT(error.what(), testing::HasSubstr("torque or a spring"));
+    EXPECT_THAT(error.what(),
+                ::testing::HasSubstr("the exact integrator needs a torque-free body"));
+    EXPECT_THAT(error.what(), ::testing::HasSubstr("torque or a spring"));
   }
 }
 

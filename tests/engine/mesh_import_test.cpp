@@ -55,9 +55,9 @@ using ::testing::StartsWith;
 using tumble::testing::input_error_of;
 namespace fixtures = mesh_fixtures;
 
-constexpr double kDensity = 1000.0;  // analyze_mesh's default
-constexpr double kExact = 1e-12;     // float-exact coordinates and transforms
-constexpr double kFloat = 1e-6;      // transforms that pass through float rounding
+constexpr double kDensity = 1000.0;    // analyze_mesh's default
+constexpr double kFloatExact = 1e-12;  // float-exact coordinates and transforms
+constexpr double kFloat = 1e-6;        // transforms that pass through float rounding
 
 // The reference solid: a 2 x 3 x 4 box centred at (3, -1, 2.5), all corners exact in float.
 const Eigen::Vector3d kLow(2.0, -2.5, 0.5);
@@ -180,14 +180,14 @@ TEST(MeshImport, BinaryStl) {
   const MeshReport report = analyze_file(file);
   EXPECT_EQ(report.input_triangles, 12u);
   EXPECT_EQ(report.vertices, 8u);  // 36 corners welded
-  expect_body(report, test_box_moments(), kExact);
+  expect_body(report, test_box_moments(), kFloatExact);
 }
 
 TEST(MeshImport, AsciiStl) {
   TempDir dir;
   const auto file = dir / "box.stl";
   fixtures::write_stl_ascii(file, {fixtures::fan_triangulated(test_box())});
-  expect_body(analyze_file(file), test_box_moments(), kExact);
+  expect_body(analyze_file(file), test_box_moments(), kFloatExact);
 }
 
 TEST(MeshImport, AsciiStlWithTwoSolidsIsOneBody) {
@@ -198,7 +198,7 @@ TEST(MeshImport, AsciiStlWithTwoSolidsIsOneBody) {
                                    fixtures::fan_triangulated(fixtures::box(low, high))});
   const MeshReport report = analyze_file(file);
   EXPECT_EQ(report.parts, 2u);
-  expect_body(report, test_box_moments() + fixtures::box_moments(low, high), kExact);
+  expect_body(report, test_box_moments() + fixtures::box_moments(low, high), kFloatExact);
 }
 
 TEST(MeshImport, ObjWithQuads) {
@@ -207,7 +207,7 @@ TEST(MeshImport, ObjWithQuads) {
   fixtures::write_obj(file, {test_box()});
   const MeshReport report = analyze_file(file);
   EXPECT_EQ(report.input_triangles, 12u);
-  expect_body(report, test_box_moments(), kExact);
+  expect_body(report, test_box_moments(), kFloatExact);
 }
 
 TEST(MeshImport, ObjWithHexagonCaps) {
@@ -216,7 +216,7 @@ TEST(MeshImport, ObjWithHexagonCaps) {
   fixtures::write_obj(file, {fixtures::prism(kHexagon, -1.5, 2.25)});
   const MeshReport report = analyze_file(file);
   EXPECT_EQ(report.input_triangles, 2u * 4u + 6u * 2u);
-  expect_body(report, fixtures::prism_moments(kHexagon, -1.5, 2.25), kExact);
+  expect_body(report, fixtures::prism_moments(kHexagon, -1.5, 2.25), kFloatExact);
 }
 
 TEST(MeshImport, ObjWithNonConvexCaps) {
@@ -228,7 +228,7 @@ TEST(MeshImport, ObjWithNonConvexCaps) {
                            fixtures::box_moments({0.0, 1.0, -1.0}, {1.0, 3.0, 1.5});
   const MeshReport ell_report = analyze_file(ell_file);
   EXPECT_EQ(ell_report.input_triangles, 2u * 4u + 6u * 2u);
-  expect_body(ell_report, ell, kExact);
+  expect_body(ell_report, ell, kFloatExact);
 
   const auto tee_file = dir / "tee.obj";
   fixtures::write_obj(tee_file, {fixtures::prism(kTee, 0.5, 4.0)});
@@ -236,7 +236,7 @@ TEST(MeshImport, ObjWithNonConvexCaps) {
                            fixtures::box_moments({-3.0, 2.0, 0.5}, {3.0, 3.0, 4.0});
   const MeshReport tee_report = analyze_file(tee_file);
   EXPECT_EQ(tee_report.input_triangles, 2u * 6u + 8u * 2u);
-  expect_body(tee_report, tee, kExact);
+  expect_body(tee_report, tee, kFloatExact);
 }
 
 TEST(MeshImport, ObjWithTwoObjectsIsOneBody) {
@@ -245,7 +245,8 @@ TEST(MeshImport, ObjWithTwoObjectsIsOneBody) {
   fixtures::write_obj(file, {test_box(), fixtures::prism(kHexagon, 10.0, 11.0)});
   const MeshReport report = analyze_file(file);
   EXPECT_EQ(report.parts, 2u);
-  expect_body(report, test_box_moments() + fixtures::prism_moments(kHexagon, 10.0, 11.0), kExact);
+  expect_body(report, test_box_moments() + fixtures::prism_moments(kHexagon, 10.0, 11.0),
+              kFloatExact);
 }
 
 TEST(MeshImport, ObjIgnoresPointsAndLinesBesideTriangles) {
@@ -259,42 +260,42 @@ TEST(MeshImport, ObjIgnoresPointsAndLinesBesideTriangles) {
     text.assign(std::istreambuf_iterator<char>(in), {});
   }
   fixtures::write_file(file, text + "v 100 100 100\nl 1 2 3 9\np 4 5 9\n");
-  expect_body(analyze_file(file), test_box_moments(), kExact);
+  expect_body(analyze_file(file), test_box_moments(), kFloatExact);
 }
 
 TEST(MeshImport, PlyAscii) {
   TempDir dir;
   const auto file = dir / "box.ply";
   fixtures::write_ply(file, test_box(), /*binary=*/false);
-  expect_body(analyze_file(file), test_box_moments(), kExact);
+  expect_body(analyze_file(file), test_box_moments(), kFloatExact);
 }
 
 TEST(MeshImport, PlyBinaryLittleEndianWithNonConvexCaps) {
   TempDir dir;
   const auto file = dir / "tee.ply";
   fixtures::write_ply(file, fixtures::prism(kTee, 0.5, 4.0), /*binary=*/true);
-  expect_body(analyze_file(file), fixtures::prism_moments(kTee, 0.5, 4.0), kExact);
+  expect_body(analyze_file(file), fixtures::prism_moments(kTee, 0.5, 4.0), kFloatExact);
 }
 
 TEST(MeshImport, PlyBinaryLittleEndianBox) {
   TempDir dir;
   const auto file = dir / "box.ply";
   fixtures::write_ply(file, test_box(), /*binary=*/true);
-  expect_body(analyze_file(file), test_box_moments(), kExact);
+  expect_body(analyze_file(file), test_box_moments(), kFloatExact);
 }
 
 TEST(MeshImport, Off) {
   TempDir dir;
   const auto file = dir / "box.off";
   fixtures::write_off(file, test_box());
-  expect_body(analyze_file(file), test_box_moments(), kExact);
+  expect_body(analyze_file(file), test_box_moments(), kFloatExact);
 }
 
 TEST(MeshImport, OffWithHexagonCaps) {
   TempDir dir;
   const auto file = dir / "hexagonal_prism.off";
   fixtures::write_off(file, fixtures::prism(kHexagon, -1.5, 2.25));
-  expect_body(analyze_file(file), fixtures::prism_moments(kHexagon, -1.5, 2.25), kExact);
+  expect_body(analyze_file(file), fixtures::prism_moments(kHexagon, -1.5, 2.25), kFloatExact);
 }
 
 // --- glTF 2.0 node transforms ----------------------------------------------------------------
@@ -318,7 +319,7 @@ TEST(MeshImport, GltfNodeTranslationRotationScale) {
     const MeshReport report = analyze_file(file);
     EXPECT_LE((report.bounds_max - report.bounds_min - Eigen::Vector3d(6.0, 4.0, 1.5)).norm(),
               1e-12);
-    expect_body(report, transformed(test_box_moments(), node), kExact);
+    expect_body(report, transformed(test_box_moments(), node), kFloatExact);
     const SolidMoments scaled =
         transformed(test_box_moments(), trs({0, 0, 0}, {0, 0, 0, 1}, kScale));
     const Eigen::Matrix3d rotation = fixtures::quaternion_matrix(0.5, 0.5, 0.5, 0.5);
@@ -356,7 +357,7 @@ TEST(MeshImport, GltfNestedNodeTransformsCompose) {
   const Affine world = trs(no_translation, no_rotation, {2, 2, 2}) *
                        trs({1, 2, 3}, kCycleAxes, unit) *
                        trs({-4, 0.25, 8}, half_turn_x, {1, 2, 0.5});
-  expect_body(analyze_file(file), transformed(test_box_moments(), world), kExact);
+  expect_body(analyze_file(file), transformed(test_box_moments(), world), kFloatExact);
 }
 
 TEST(MeshImport, GltfMirroringScaleKeepsBodyOutward) {
@@ -368,7 +369,7 @@ TEST(MeshImport, GltfMirroringScaleKeepsBodyOutward) {
                        {0}, false);
   const MeshReport report = analyze_file(file);
   expect_body(report, transformed(test_box_moments(), trs({0, 0, 0}, {0, 0, 0, 1}, {-1, 1, 1})),
-              kExact);
+              kFloatExact);
   EXPECT_LE((report.mass_properties.center_of_mass - Eigen::Vector3d(-3.0, -1.0, 2.5)).norm(),
             1e-12);
   EXPECT_GT(report.volume, 0.0);
@@ -392,7 +393,7 @@ TEST(MeshImport, GltfMirrorsComposeAcrossTheHierarchy) {
       transformed(test_box_moments(), trs({0, 0, 20}, none, {1, 1, -0.5}));
   const MeshReport report = analyze_file(file);
   EXPECT_EQ(report.parts, 2u);
-  expect_body(report, expected, kExact);
+  expect_body(report, expected, kFloatExact);
 }
 
 TEST(MeshImport, GltfMeshesPrimitivesAndInstancesCombineIntoOneBody) {
@@ -419,7 +420,7 @@ TEST(MeshImport, GltfMeshesPrimitivesAndInstancesCombineIntoOneBody) {
         transformed(test_box_moments(), trs({-20, 0, 0}, none, {-1, 1, 1}));
     const MeshReport report = analyze_file(file);
     EXPECT_EQ(report.parts, 4u);
-    expect_body(report, expected, kExact);
+    expect_body(report, expected, kFloatExact);
   }
 }
 
@@ -453,7 +454,8 @@ TEST(MeshImport, FbxModelTranslationAndScalingIgnoringUnitScaleFactor) {
     TempDir dir;
     const auto file = dir / "box.fbx";
     fixtures::write_fbx_ascii(file, {model}, unit_scale_factor);
-    expect_body(analyze_file(file), transformed(test_box_moments(), fbx_transform(model)), kExact);
+    expect_body(analyze_file(file), transformed(test_box_moments(), fbx_transform(model)),
+                kFloatExact);
   }
 }
 
@@ -477,7 +479,7 @@ TEST(MeshImport, FbxTwoModelsOneMirroredCombineIntoOneBody) {
   expect_body(report,
               test_box_moments() +
                   transformed(fixtures::prism_moments(kTee, 0.0, 2.0), fbx_transform(mirrored)),
-              kExact);
+              kFloatExact);
 }
 
 // --- Errors ----------------------------------------------------------------------------------

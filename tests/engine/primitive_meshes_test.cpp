@@ -19,7 +19,6 @@ namespace tumble::engine {
 namespace {
 
 using ::testing::HasSubstr;
-constexpr double kPi = std::numbers::pi;
 
 // Checks, without engine code, that the mesh is a closed, consistently wound, welded surface:
 // every directed edge appears exactly once and its reverse exactly once, no triangle is
@@ -74,7 +73,7 @@ double signed_volume(const TriangleMesh& mesh) {
 
 // Area of a regular n-gon inscribed in the unit circle.
 double unit_ngon_area(int n) {
-  return 0.5 * n * std::sin(2.0 * kPi / n);
+  return 0.5 * n * std::sin(2.0 * std::numbers::pi / n);
 }
 
 double relative_error(double value, double exact) {
@@ -129,7 +128,7 @@ TEST(CylinderMesh, IsTheExactPrismAndConvergesQuadratically) {
     EXPECT_NEAR(signed_volume(cylinder), unit_ngon_area(n) * r * r * h, 1e-14);
   }
   // Doubling the segments quarters the error of the volume (O(h^2)).
-  const double exact = kPi * r * r * h;
+  const double exact = std::numbers::pi * r * r * h;
   const double coarse = relative_error(signed_volume(cylinder_mesh(r, h, 64)), exact);
   const double fine = relative_error(signed_volume(cylinder_mesh(r, h, 128)), exact);
   EXPECT_NEAR(coarse / fine, 4.0, 0.01);
@@ -154,12 +153,13 @@ TEST(ConeMesh, IsTheExactPyramidWithApexAtTheTop) {
   }
   EXPECT_EQ(lowest, 0.0);
   EXPECT_EQ(highest, h);
-  EXPECT_LT(relative_error(signed_volume(cone_mesh(r, h, 256)), kPi * r * r * h / 3.0), 2e-4);
+  EXPECT_LT(relative_error(signed_volume(cone_mesh(r, h, 256)), std::numbers::pi * r * r * h / 3.0),
+            2e-4);
 }
 
 TEST(UvSphereMesh, ConvergesToTheBallQuadratically) {
   const double r = 0.25;
-  const double exact = 4.0 / 3.0 * kPi * r * r * r;
+  const double exact = 4.0 / 3.0 * std::numbers::pi * r * r * r;
   const TriangleMesh coarse = uv_sphere_mesh(r, 64, 32);
   const TriangleMesh fine = uv_sphere_mesh(r, 128, 64);
   expect_closed_and_clean(coarse);
@@ -187,7 +187,8 @@ TEST(EllipsoidMesh, IsTheStretchedSphere) {
   expect_closed_and_clean(ellipsoid);
   const double unit = signed_volume(uv_sphere_mesh(1.0, 96, 48));
   EXPECT_NEAR(signed_volume(ellipsoid), unit * radii.prod(), 1e-14);
-  EXPECT_LT(relative_error(signed_volume(ellipsoid), 4.0 / 3.0 * kPi * radii.prod()), 2e-3);
+  EXPECT_LT(relative_error(signed_volume(ellipsoid), 4.0 / 3.0 * std::numbers::pi * radii.prod()),
+            2e-3);
 }
 
 TEST(TorusMesh, IsTheExactRevolvedPolygonAndConverges) {
@@ -199,7 +200,7 @@ TEST(TorusMesh, IsTheExactRevolvedPolygonAndConverges) {
   // Pappus on polygons: an n-gon ring scales the revolved area by unit_ngon_area(n) / pi.
   EXPECT_NEAR(signed_volume(torus),
               2.0 * big * unit_ngon_area(40) * unit_ngon_area(12) * small * small, 1e-15);
-  const double exact = 2.0 * kPi * kPi * big * small * small;
+  const double exact = 2.0 * std::numbers::pi * std::numbers::pi * big * small * small;
   EXPECT_LT(relative_error(signed_volume(torus_mesh(big, small, 256, 64)), exact), 2e-3);
 }
 
@@ -212,7 +213,8 @@ TEST(RevolveProfile, MatchesTheSumOfFrustumsEitherDirection) {
   for (std::size_t i = 0; i + 1 < profile.size(); ++i) {
     const double r1 = profile[i].x();
     const double r2 = profile[i + 1].x();
-    exact += kPi * (profile[i + 1].y() - profile[i].y()) * (r1 * r1 + r1 * r2 + r2 * r2) / 3.0;
+    exact += std::numbers::pi * (profile[i + 1].y() - profile[i].y()) *
+             (r1 * r1 + r1 * r2 + r2 * r2) / 3.0;
   }
   const int n = 36;
   const TriangleMesh forward = revolve_profile(profile, n);
@@ -220,7 +222,7 @@ TEST(RevolveProfile, MatchesTheSumOfFrustumsEitherDirection) {
   for (const TriangleMesh* mesh : {&forward, &backward}) {
     expect_closed_and_clean(*mesh);
     EXPECT_EQ(mesh->positions.size(), 6u * n + 2u);
-    EXPECT_NEAR(signed_volume(*mesh), exact * unit_ngon_area(n) / kPi, 1e-15);
+    EXPECT_NEAR(signed_volume(*mesh), exact * unit_ngon_area(n) / std::numbers::pi, 1e-15);
   }
 }
 
@@ -269,7 +271,7 @@ TEST(ExtrudePolygon, FinelySampledRoundOutline) {
   std::vector<Eigen::Vector2d> outline;
   const int n = 400;
   for (int k = 0; k < n; ++k) {
-    const double angle = 2.0 * kPi * k / n;
+    const double angle = 2.0 * std::numbers::pi * k / n;
     const double radius = 0.1 * (1.0 + 0.3 * std::cos(5.0 * angle));  // a five-petal flower
     outline.emplace_back(radius * std::cos(angle), radius * std::sin(angle));
   }
@@ -304,7 +306,7 @@ TEST(ExtrudePolygon, RejectsSelfIntersectingOrDegenerateOutlines) {
 
 TEST(IcosphereMesh, HasTheRightCountsAndConvergesFromInside) {
   const double r = 0.4;
-  const double exact = 4.0 / 3.0 * kPi * r * r * r;
+  const double exact = 4.0 / 3.0 * std::numbers::pi * r * r * r;
   double previous_error = 1.0;
   for (int level = 0; level <= 4; ++level) {
     const TriangleMesh sphere = icosphere_mesh(r, level);

@@ -24,7 +24,6 @@ using testing::expect_vector_near;
 using ::testing::HasSubstr;
 using testing::kExact;
 using tumble::testing::input_error_of;
-constexpr double kPi = std::numbers::pi;
 constexpr double kDensity = 1250.0;
 
 Eigen::Matrix3d diagonal(double a, double b, double c) {
@@ -67,20 +66,20 @@ TEST(PrimitiveShapes, BoxSphereCylinderEllipsoidConeMatchTheTextbookForms) {
 
   const double r = 0.45;
   const MassProperties sphere = mass_properties(Sphere{r}, kDensity);
-  m = kDensity * 4.0 / 3.0 * kPi * r * r * r;
+  m = kDensity * 4.0 / 3.0 * std::numbers::pi * r * r * r;
   EXPECT_NEAR(sphere.mass, m, 1e-12 * m);
   expect_inertia_near(sphere.inertia, 0.4 * m * r * r * Eigen::Matrix3d::Identity());
 
   const double cr = 0.3, l = 1.7;
   const MassProperties cylinder = mass_properties(Cylinder{cr, l}, kDensity);
-  m = kDensity * kPi * cr * cr * l;
+  m = kDensity * std::numbers::pi * cr * cr * l;
   EXPECT_NEAR(cylinder.mass, m, 1e-12 * m);
   const double across = m * (3.0 * cr * cr + l * l) / 12.0;
   expect_inertia_near(cylinder.inertia, diagonal(across, across, m * cr * cr / 2.0));
 
   const Eigen::Vector3d radii(0.6, 0.35, 1.1);
   const MassProperties ellipsoid = mass_properties(Ellipsoid{radii}, kDensity);
-  m = kDensity * 4.0 / 3.0 * kPi * radii.prod();
+  m = kDensity * 4.0 / 3.0 * std::numbers::pi * radii.prod();
   EXPECT_NEAR(ellipsoid.mass, m, 1e-12 * m);
   const Eigen::Vector3d r2 = radii.cwiseAbs2();
   expect_inertia_near(ellipsoid.inertia,
@@ -88,7 +87,7 @@ TEST(PrimitiveShapes, BoxSphereCylinderEllipsoidConeMatchTheTextbookForms) {
 
   const double kr = 0.5, h = 1.4;
   const MassProperties cone = mass_properties(Cone{kr, h}, kDensity);
-  m = kDensity * kPi * kr * kr * h / 3.0;
+  m = kDensity * std::numbers::pi * kr * kr * h / 3.0;
   EXPECT_NEAR(cone.mass, m, 1e-12 * m);
   const double tilt = m * (3.0 * kr * kr / 20.0 + 3.0 * h * h / 80.0);
   expect_inertia_near(cone.inertia, diagonal(tilt, tilt, 0.3 * m * kr * kr));
@@ -102,8 +101,8 @@ TEST(PrimitiveShapes, BoxSphereCylinderEllipsoidConeMatchTheTextbookForms) {
 // l/2 + 3r/8 to the middle.
 TEST(PrimitiveShapes, CapsuleIsACylinderAndTwoShiftedHemispheres) {
   const double r = 0.25, l = 0.9;
-  const double m_cylinder = kDensity * kPi * r * r * l;
-  const double m_half = kDensity * 2.0 / 3.0 * kPi * r * r * r;
+  const double m_cylinder = kDensity * std::numbers::pi * r * r * l;
+  const double m_half = kDensity * 2.0 / 3.0 * std::numbers::pi * r * r * r;
   const double shift = l / 2.0 + 3.0 * r / 8.0;
   const double across = m_cylinder * (3.0 * r * r + l * l) / 12.0 +
                         2.0 * (83.0 / 320.0 * m_half * r * r + m_half * shift * shift);
@@ -112,7 +111,8 @@ TEST(PrimitiveShapes, CapsuleIsACylinderAndTwoShiftedHemispheres) {
   const MassProperties capsule = mass_properties(Capsule{r, l}, kDensity);
   EXPECT_NEAR(capsule.mass, m_cylinder + 2.0 * m_half, 1e-12 * capsule.mass);
   expect_inertia_near(capsule.inertia, diagonal(across, across, axial));
-  EXPECT_NEAR(volume(Capsule{r, l}), kPi * r * r * l + 4.0 / 3.0 * kPi * r * r * r, 1e-15);
+  EXPECT_NEAR(volume(Capsule{r, l}),
+              std::numbers::pi * r * r * l + 4.0 / 3.0 * std::numbers::pi * r * r * r, 1e-15);
 }
 
 TEST(PrimitiveShapes, LimitsAgreeBetweenShapes) {
@@ -176,7 +176,7 @@ TEST(PrimitiveShapes, CylinderMeshMatchesThePolygonFormula) {
   const double r = 0.3, l = 1.7;
   for (int n : {8, 64}) {
     const MassProperties mesh = mesh_properties(Cylinder{r, l}, n);
-    const double expected = r * r * (2.0 + std::cos(2.0 * kPi / n)) / 6.0;
+    const double expected = r * r * (2.0 + std::cos(2.0 * std::numbers::pi / n)) / 6.0;
     EXPECT_NEAR(mesh.inertia(2, 2) / mesh.mass, expected, 1e-13) << n;
   }
 }

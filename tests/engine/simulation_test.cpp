@@ -28,7 +28,7 @@ using LD = long double;
 const Eigen::Quaterniond kOrientation(Eigen::AngleAxisd(0.7,
                                                         Eigen::Vector3d(1, 2, 3).normalized()));
 
-BodyModel free_body(const std::string& name, const Eigen::Vector3d& moments) {
+BodyModel named_free_body(const std::string& name, const Eigen::Vector3d& moments) {
   BodyModel body;
   body.name = name;
   body.mass = 1.0;
@@ -103,7 +103,7 @@ class LongDoubleRk4 {
 TEST(Simulation, ExactMatchesIndependentLongDoubleRk4OverManyFlips) {
   const Eigen::Vector3d moments(1.0, 2.0, 3.0);
   const Eigen::Vector3d omega0(0.4, 0.8, 0.6);
-  const BodyModel body = free_body("tumbler", moments);
+  const BodyModel body = named_free_body("tumbler", moments);
   const BodyState start = spinning_state(body, kOrientation, omega0);
   const double dt = 0.05, duration = 40.0;
   Simulation sim({body}, {start}, settings_for(K::kExact, dt, duration));
@@ -131,7 +131,7 @@ TEST(Simulation, ExactMatchesIndependentLongDoubleRk4OverManyFlips) {
 }
 
 TEST(Simulation, TimesAreWholeStepsAndTheLastStepEndsAtTheDuration) {
-  const BodyModel body = free_body("b", Eigen::Vector3d(1.0, 2.0, 3.0));
+  const BodyModel body = named_free_body("b", Eigen::Vector3d(1.0, 2.0, 3.0));
   Simulation sim({body}, {spinning_state(body, kOrientation, Eigen::Vector3d(0.1, 0.2, 0.3))},
                  settings_for(K::kRk4, 0.3, 1.0));
   EXPECT_EQ(sim.total_steps(), 4u);
@@ -147,7 +147,7 @@ TEST(Simulation, TimesAreWholeStepsAndTheLastStepEndsAtTheDuration) {
 }
 
 TEST(Simulation, ExactRefusesTorquedBodyWithInputError) {
-  BodyModel spinner = free_body("spinner", Eigen::Vector3d(1.0, 2.0, 3.0));
+  BodyModel spinner = named_free_body("spinner", Eigen::Vector3d(1.0, 2.0, 3.0));
   spinner.forces = {ConstantTorque{Eigen::Vector3d(1.0, 0.0, 0.0), true}};
   const std::string message = tumble::testing::input_error_of(
       [&] { Simulation sim({spinner}, {BodyState{}}, settings_for(K::kExact, 0.01, 1.0)); },
@@ -170,7 +170,7 @@ struct SpringCase {
 
 SpringCase stiff_spring() {
   SpringCase c;
-  c.body = free_body("bob", Eigen::Vector3d::Constant(1e-3));
+  c.body = named_free_body("bob", Eigen::Vector3d::Constant(1e-3));
   c.body.mass = 2.0;
   const double stiffness = 8.0;
   c.wn = std::sqrt(stiffness / c.body.mass);  // 2 rad/s
@@ -303,7 +303,7 @@ struct NeedleCase {
 
 NeedleCase needle() {
   NeedleCase c;
-  c.body = free_body("needle", Eigen::Vector3d(1.0, 1000.0, 1000.0));
+  c.body = named_free_body("needle", Eigen::Vector3d(1.0, 1000.0, 1000.0));
   c.start = spinning_state(c.body, kOrientation, Eigen::Vector3d(c.spin, c.wobble, 0.0));
   return c;
 }
@@ -358,7 +358,7 @@ TEST(Needle, SplittingStaysStableOnTheSameCase) {
 // When one body blows up, no body is advanced: the step is all or nothing.
 TEST(Simulation, BlowUpOfOneBodyLeavesEveryBodyAtTheLastGoodStep) {
   const NeedleCase c = needle();
-  const BodyModel calm = free_body("calm", Eigen::Vector3d(1.0, 2.0, 3.0));
+  const BodyModel calm = named_free_body("calm", Eigen::Vector3d(1.0, 2.0, 3.0));
   const BodyState calm_start = spinning_state(calm, kOrientation, Eigen::Vector3d(0.4, 0.8, 0.6));
   Simulation sim({calm, c.body}, {calm_start, c.start},
                  settings_for(K::kExplicitEuler, c.dt, 10.0));
@@ -385,9 +385,9 @@ TEST(Simulation, BlowUpOfOneBodyLeavesEveryBodyAtTheLastGoodStep) {
 // Determinism: the same run twice gives the same bits, for every integrator, with force terms.
 
 TEST(Simulation, IdenticalRunsAreBitIdenticalForEveryIntegrator) {
-  BodyModel falling = free_body("falling", Eigen::Vector3d(1.0, 2.0, 3.0));
+  BodyModel falling = named_free_body("falling", Eigen::Vector3d(1.0, 2.0, 3.0));
   falling.forces = {Gravity{Eigen::Vector3d(0.0, 0.0, -9.81)}};
-  BodyModel top = free_body("top", Eigen::Vector3d(1.25, 1.25, 0.5));
+  BodyModel top = named_free_body("top", Eigen::Vector3d(1.25, 1.25, 0.5));
   top.pivoted = true;
   top.center_offset = Eigen::Vector3d(0.0, 0.0, 0.5);
   top.forces = {Gravity{Eigen::Vector3d(0.0, 0.0, -9.81)},

@@ -97,8 +97,8 @@ TEST(WeldPositions, ScratchMemoryGivesTheSameWeld) {
   for (const auto* positions : {&strips, &scattered}) {
     const Oracle oracle = first_occurrence_numbering(*positions);
     for (const double bytes_per_vertex : {12.0, 4.5, 3.0, -12.0}) {
-      SCOPED_TRACE(testing::Message() << (positions == &strips ? "strips" : "scattered")
-                                      << ", scratch bytes per vertex " << bytes_per_vertex);
+      SCOPED_TRACE(::testing::Message() << (positions == &strips ? "strips" : "scattered")
+                                        << ", scratch bytes per vertex " << bytes_per_vertex);
       // 16-byte aligned memory, filled with garbage; a negative size asks for a misaligned span.
       const auto bytes = static_cast<std::size_t>(std::abs(bytes_per_vertex) * count);
       std::vector<std::array<float, 4>> memory(bytes / 16 + 2);

@@ -14,8 +14,8 @@ namespace {
 
 using testing::box_mesh;
 
-constexpr int kWidth = 160;
-constexpr int kHeight = 120;
+constexpr int kAaWidth = 160;
+constexpr int kAaHeight = 120;
 constexpr int kScale = 4;  // oracle supersampling per axis
 
 DrawList box_frame(MeshId box) {
@@ -43,11 +43,11 @@ struct Oracle {
 };
 
 Oracle box_oracle() {
-  const Image big = render_box({kWidth * kScale, kHeight * kScale});
-  Oracle oracle{std::vector<float>(3 * kWidth * kHeight, 0.0f),
-                std::vector<bool>(kWidth * kHeight, false)};
-  for (int y = 0; y < kHeight; ++y) {
-    for (int x = 0; x < kWidth; ++x) {
+  const Image big = render_box({kAaWidth * kScale, kAaHeight * kScale});
+  Oracle oracle{std::vector<float>(3 * kAaWidth * kAaHeight, 0.0f),
+                std::vector<bool>(kAaWidth * kAaHeight, false)};
+  for (int y = 0; y < kAaHeight; ++y) {
+    for (int x = 0; x < kAaWidth; ++x) {
       for (int c = 0; c < 3; ++c) {
         int lo = 255;
         int hi = 0;
@@ -60,8 +60,8 @@ Oracle box_oracle() {
             sum += static_cast<float>(v);
           }
         }
-        oracle.mean[3 * (y * kWidth + x) + c] = sum / (kScale * kScale);
-        if (hi - lo > 8) oracle.partial[y * kWidth + x] = true;
+        oracle.mean[3 * (y * kAaWidth + x) + c] = sum / (kScale * kScale);
+        if (hi - lo > 8) oracle.partial[y * kAaWidth + x] = true;
       }
     }
   }
@@ -72,7 +72,7 @@ Oracle box_oracle() {
 double edge_error(const Image& image, const Oracle& oracle) {
   double sum = 0.0;
   int count = 0;
-  for (int p = 0; p < kWidth * kHeight; ++p) {
+  for (int p = 0; p < kAaWidth * kAaHeight; ++p) {
     if (!oracle.partial[p]) continue;
     for (int c = 0; c < 3; ++c) {
       sum += std::abs(static_cast<float>(image.rgba[4 * p + c]) - oracle.mean[3 * p + c]);
@@ -83,13 +83,13 @@ double edge_error(const Image& image, const Oracle& oracle) {
 }
 
 RendererOptions fxaa_options() {
-  RendererOptions options{kWidth, kHeight};
+  RendererOptions options{kAaWidth, kAaHeight};
   options.filter = AntialiasingFilter::fxaa;
   return options;
 }
 
 TEST(Antialiasing, FxaaIsOffByDefaultAndOnWhenAsked) {
-  EXPECT_EQ(Renderer({kWidth, kHeight}).filter(), AntialiasingFilter::none);
+  EXPECT_EQ(Renderer({kAaWidth, kAaHeight}).filter(), AntialiasingFilter::none);
   EXPECT_EQ(Renderer(fxaa_options()).filter(), AntialiasingFilter::fxaa);
   RendererOptions both = fxaa_options();
   both.samples = 4;  // multisampling wins: the filter would only blur resolved edges
@@ -98,7 +98,7 @@ TEST(Antialiasing, FxaaIsOffByDefaultAndOnWhenAsked) {
 
 TEST(Antialiasing, FxaaEdgesAreCloserToTheTrueCoverage) {
   const Oracle oracle = box_oracle();
-  const double aliased = edge_error(render_box({kWidth, kHeight}), oracle);
+  const double aliased = edge_error(render_box({kAaWidth, kAaHeight}), oracle);
   const double filtered = edge_error(render_box(fxaa_options()), oracle);
   RecordProperty("aliased_error", std::to_string(aliased));
   RecordProperty("fxaa_error", std::to_string(filtered));
@@ -108,15 +108,15 @@ TEST(Antialiasing, FxaaEdgesAreCloserToTheTrueCoverage) {
 
 TEST(Antialiasing, FlatRegionsAreUnchanged) {
   const Oracle oracle = box_oracle();
-  const Image aliased = render_box({kWidth, kHeight});
+  const Image aliased = render_box({kAaWidth, kAaHeight});
   const Image filtered = render_box(fxaa_options());
   int far = 0;
-  for (int y = 3; y < kHeight - 3; ++y) {
-    for (int x = 3; x < kWidth - 3; ++x) {
+  for (int y = 3; y < kAaHeight - 3; ++y) {
+    for (int x = 3; x < kAaWidth - 3; ++x) {
       bool near_edge = false;
       for (int j = -3; j <= 3 && !near_edge; ++j) {
         for (int i = -3; i <= 3 && !near_edge; ++i) {
-          near_edge = oracle.partial[(y + j) * kWidth + x + i];
+          near_edge = oracle.partial[(y + j) * kAaWidth + x + i];
         }
       }
       if (near_edge) continue;
@@ -124,7 +124,7 @@ TEST(Antialiasing, FlatRegionsAreUnchanged) {
       EXPECT_LE(testing::pixel_difference(aliased, filtered, x, y), 1) << x << "," << y;
     }
   }
-  EXPECT_GT(far, kWidth * kHeight / 2);
+  EXPECT_GT(far, kAaWidth * kAaHeight / 2);
 }
 
 TEST(Antialiasing, OverlayTextIsNotFiltered) {
@@ -138,16 +138,16 @@ TEST(Antialiasing, OverlayTextIsNotFiltered) {
   panel.lines = {"t = 1.25 s"};
   frame.panels.push_back(panel);
   frame.labels.push_back({"HELLO", std::nullopt, {100.0f, 80.0f}, {1, 1, 1, 1}});
-  Renderer aliased({kWidth, kHeight});
+  Renderer aliased({kAaWidth, kAaHeight});
   Renderer filtered(fxaa_options());
   const Image a = aliased.render(frame);
   const Image b = filtered.render(frame);
   ASSERT_EQ(a.rgba.size(), b.rgba.size());
   int text_pixels = 0;  // the text is there, with hard edges the filter would have softened
-  for (int y = 0; y < kHeight; ++y) {
-    for (int x = 0; x < kWidth; ++x) {
+  for (int y = 0; y < kAaHeight; ++y) {
+    for (int x = 0; x < kAaWidth; ++x) {
       EXPECT_EQ(testing::pixel_difference(a, b, x, y), 0) << x << "," << y;
-      if (y + 1 < kHeight && std::abs(a.pixel(x, y)[0] - a.pixel(x, y + 1)[0]) > 60) {
+      if (y + 1 < kAaHeight && std::abs(a.pixel(x, y)[0] - a.pixel(x, y + 1)[0]) > 60) {
         ++text_pixels;
       }
     }

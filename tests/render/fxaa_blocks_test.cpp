@@ -17,13 +17,13 @@
 namespace tumble::render::detail {
 namespace {
 
-constexpr int kWidth = 203;  // not a multiple of the block sides: partial blocks at the edges
-constexpr int kHeight = 97;
+constexpr int kBlocksWidth = 203;  // not a multiple of the block sides: partial blocks at the edges
+constexpr int kBlocksHeight = 97;
 
 float green_at(const std::vector<std::uint8_t>& rgba, int x, int y) {
-  x = std::clamp(x, 0, kWidth - 1);
-  y = std::clamp(y, 0, kHeight - 1);
-  return static_cast<float>(rgba[4 * (y * kWidth + x) + 1]) / 255.0f;
+  x = std::clamp(x, 0, kBlocksWidth - 1);
+  y = std::clamp(y, 0, kBlocksHeight - 1);
+  return static_cast<float>(rgba[4 * (y * kBlocksWidth + x) + 1]) / 255.0f;
 }
 
 /// The shader's test (fxaa_shaders.hpp): not discarded.
@@ -39,7 +39,7 @@ bool shader_filters(const std::vector<std::uint8_t>& rgba, int x, int y) {
 
 std::set<std::pair<int, int>> covered_blocks(const std::vector<std::uint8_t>& rgba) {
   std::vector<BlockRun> runs;
-  find_edge_blocks(rgba.data(), kWidth, kHeight, runs);
+  find_edge_blocks(rgba.data(), kBlocksWidth, kBlocksHeight, runs);
   std::set<std::pair<int, int>> blocks;
   for (const BlockRun& run : runs) {
     for (int i = 0; i < run.count; ++i) blocks.insert({run.first + i, run.row});
@@ -49,15 +49,15 @@ std::set<std::pair<int, int>> covered_blocks(const std::vector<std::uint8_t>& rg
 
 /// A flat image with a dark disc, a faint ramp and noise in one corner.
 std::vector<std::uint8_t> test_image(std::uint32_t seed) {
-  std::vector<std::uint8_t> rgba(4 * kWidth * kHeight, 255);
+  std::vector<std::uint8_t> rgba(4 * kBlocksWidth * kBlocksHeight, 255);
   std::mt19937 random(seed);
   std::uniform_int_distribution<int> noise(0, 40);
-  for (int y = 0; y < kHeight; ++y) {
-    for (int x = 0; x < kWidth; ++x) {
+  for (int y = 0; y < kBlocksHeight; ++y) {
+    for (int x = 0; x < kBlocksWidth; ++x) {
       int g = 180 + x / 40;  // gentle gradient: below the threshold
       if (std::hypot(x - 90.0, y - 50.0) < 30.0) g = 20 + x / 10;
       if (x > 170 && y > 70) g = 100 + noise(random);
-      std::uint8_t* p = &rgba[4 * (y * kWidth + x)];
+      std::uint8_t* p = &rgba[4 * (y * kBlocksWidth + x)];
       p[0] = static_cast<std::uint8_t>(255 - g);
       p[1] = static_cast<std::uint8_t>(g);
       p[2] = static_cast<std::uint8_t>(g / 2);
@@ -72,8 +72,8 @@ TEST(FxaaBlocks, EveryFilteredPixelIsInABlock) {
     const auto blocks = covered_blocks(rgba);
     int filtered = 0;
     std::set<std::pair<int, int>> needed;
-    for (int y = 0; y < kHeight; ++y) {
-      for (int x = 0; x < kWidth; ++x) {
+    for (int y = 0; y < kBlocksHeight; ++y) {
+      for (int x = 0; x < kBlocksWidth; ++x) {
         if (!shader_filters(rgba, x, y)) continue;
         ++filtered;
         needed.insert({x / kEdgeBlock, y / kEdgeBlock});
@@ -87,23 +87,23 @@ TEST(FxaaBlocks, EveryFilteredPixelIsInABlock) {
 }
 
 TEST(FxaaBlocks, FlatAndFaintImagesHaveNone) {
-  std::vector<std::uint8_t> rgba(4 * kWidth * kHeight, 0);
-  for (int y = 0; y < kHeight; ++y) {
-    for (int x = 0; x < kWidth; ++x)
-      rgba[4 * (y * kWidth + x) + 1] = static_cast<std::uint8_t>(x / 30);
+  std::vector<std::uint8_t> rgba(4 * kBlocksWidth * kBlocksHeight, 0);
+  for (int y = 0; y < kBlocksHeight; ++y) {
+    for (int x = 0; x < kBlocksWidth; ++x)
+      rgba[4 * (y * kBlocksWidth + x) + 1] = static_cast<std::uint8_t>(x / 30);
   }
   EXPECT_TRUE(covered_blocks(rgba).empty());
 }
 
 TEST(FxaaBlocks, OneVerticalEdgeGivesOneBlockARow) {
-  std::vector<std::uint8_t> rgba(4 * kWidth * kHeight, 40);
-  for (int y = 0; y < kHeight; ++y) {
-    for (int x = 50; x < kWidth; ++x) rgba[4 * (y * kWidth + x) + 1] = 200;
+  std::vector<std::uint8_t> rgba(4 * kBlocksWidth * kBlocksHeight, 40);
+  for (int y = 0; y < kBlocksHeight; ++y) {
+    for (int x = 50; x < kBlocksWidth; ++x) rgba[4 * (y * kBlocksWidth + x) + 1] = 200;
   }
   std::vector<BlockRun> runs;
-  find_edge_blocks(rgba.data(), kWidth, kHeight, runs);
+  find_edge_blocks(rgba.data(), kBlocksWidth, kBlocksHeight, runs);
   // Pixels 49 and 50 see the step; they lie in block columns 12 (48..51): one block a row.
-  const int rows = (kHeight + kEdgeBlock - 1) / kEdgeBlock;
+  const int rows = (kBlocksHeight + kEdgeBlock - 1) / kEdgeBlock;
   ASSERT_EQ(static_cast<int>(runs.size()), rows);
   for (int r = 0; r < rows; ++r) {
     EXPECT_EQ(runs[static_cast<std::size_t>(r)].row, r);

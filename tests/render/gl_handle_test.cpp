@@ -27,8 +27,8 @@ namespace {
 using ::testing::HasSubstr;
 using ::testing::ThrowsMessage;
 
-constexpr int kWidth = 64;
-constexpr int kHeight = 48;
+constexpr int kContextWidth = 64;
+constexpr int kContextHeight = 48;
 
 /// How many names in 1..8191 are live objects for `is` (Mesa hands out small names).
 int live(GLboolean (*is)(GLuint)) {
@@ -75,7 +75,7 @@ constexpr const char* kFragment =
     "#version 330 core\nout vec4 colour;\nvoid main() { colour = vec4(1); }\n";
 
 TEST(GlHandle, DeletesItsObjectOnceAndMovedFromHandlesDeleteNothing) {
-  OffscreenContext context(kWidth, kHeight, 1);
+  OffscreenContext context(kContextWidth, kContextHeight, 1);
   GlBuffer first = GlBuffer::create();
   glBindBuffer(GL_ARRAY_BUFFER, first.get());  // a generated name is an object once bound
   const GLuint name = first.get();
@@ -104,7 +104,7 @@ TEST(GlHandle, DeletesItsObjectOnceAndMovedFromHandlesDeleteNothing) {
 }
 
 TEST(GlHandle, EveryKindIsDeletedWithItsHandle) {
-  OffscreenContext context(kWidth, kHeight, 1);
+  OffscreenContext context(kContextWidth, kContextHeight, 1);
   const LiveObjects before;
   {
     const GlVertexArray vao = GlVertexArray::create();
@@ -146,7 +146,7 @@ TEST(GlHandle, CreatingWithoutAContextThrows) {
 }
 
 TEST(GpuMesh, ManyMeshesLeaveNoBufferOrVertexArrayBehind) {
-  OffscreenContext context(kWidth, kHeight, 1);
+  OffscreenContext context(kContextWidth, kContextHeight, 1);
   const LiveObjects before;
   MeshData smooth = testing::box_mesh({0.5f, 0.4f, 0.3f});
   smooth.normals.assign(smooth.positions.begin(), smooth.positions.end());
@@ -181,7 +181,7 @@ TEST(GpuMesh, ManyMeshesLeaveNoBufferOrVertexArrayBehind) {
 }
 
 TEST(GpuMesh, RejectedMeshCreatesNothing) {
-  OffscreenContext context(kWidth, kHeight, 1);
+  OffscreenContext context(kContextWidth, kContextHeight, 1);
   const LiveObjects before;
   MeshData mesh = testing::box_mesh({0.5f, 0.5f, 0.5f});
   mesh.indices.pop_back();
@@ -191,7 +191,7 @@ TEST(GpuMesh, RejectedMeshCreatesNothing) {
 }
 
 TEST(GlProgram, LinkedProgramGoesWithItsOwnerAndLeavesNoShader) {
-  OffscreenContext context(kWidth, kHeight, 1);
+  OffscreenContext context(kContextWidth, kContextHeight, 1);
   const LiveObjects before;
   GLuint name = 0;
   {
@@ -208,7 +208,7 @@ TEST(GlProgram, LinkedProgramGoesWithItsOwnerAndLeavesNoShader) {
 }
 
 TEST(GlProgram, CompileAndLinkFailuresLeaveNoShaderOrProgram) {
-  OffscreenContext context(kWidth, kHeight, 1);
+  OffscreenContext context(kContextWidth, kContextHeight, 1);
   const LiveObjects before;
   // The fragment shader fails after the vertex shader compiled: that one must go too.
   EXPECT_THAT([] { GlProgram("broken", kVertex, "#version 330 core\nvoid main() { oops; }\n"); },
@@ -243,7 +243,7 @@ DrawList busy_frame(MeshId mesh) {
 }
 
 TEST(ScenePasses, ManyPassesLeaveNoGlObjectBehind) {
-  OffscreenContext context(kWidth, kHeight, 1);
+  OffscreenContext context(kContextWidth, kContextHeight, 1);
   const LiveObjects before;
   std::vector<GpuMesh> meshes;
   meshes.push_back(upload_mesh(testing::box_mesh({0.5f, 0.4f, 0.3f})));
@@ -268,7 +268,7 @@ TEST(ScenePasses, ManyPassesLeaveNoGlObjectBehind) {
 }
 
 TEST(OverlayPass, ManyOverlaysLeaveNoGlObjectBehind) {
-  OffscreenContext context(kWidth, kHeight, 1);
+  OffscreenContext context(kContextWidth, kContextHeight, 1);
   const LiveObjects before;
   DrawList frame;
   Label label;
@@ -281,7 +281,7 @@ TEST(OverlayPass, ManyOverlaysLeaveNoGlObjectBehind) {
   frame.panels.push_back(panel);
   for (int i = 0; i < 3; ++i) {
     OverlayPass overlay;  // the ImGui backend's program, buffers and font texture
-    overlay.draw(frame, kWidth, kHeight);
+    overlay.draw(frame, kContextWidth, kContextHeight);
     if (i == 0) {
       const LiveObjects during;
       EXPECT_EQ(during.programs, before.programs + 1);
@@ -295,7 +295,7 @@ TEST(OverlayPass, ManyOverlaysLeaveNoGlObjectBehind) {
 
 TEST(OffscreenContext, HoldsOneFramebufferPerTargetAndNoFailedAttempt) {
   for (const int samples : {1, 4, 64}) {
-    OffscreenContext context(kWidth, kHeight, samples);
+    OffscreenContext context(kContextWidth, kContextHeight, samples);
     const LiveObjects objects;
     const bool resolved = context.samples() > 1;
     EXPECT_EQ(objects.framebuffers, resolved ? 2 : 1) << samples;
@@ -312,7 +312,7 @@ TEST(OffscreenContext, InvalidSizeIsTheCallersMistake) {
 
 TEST(Renderer, ReleasedMeshesAndDestroyedRenderersLeaveNoObject) {
   for (int round = 0; round < 3; ++round) {
-    Renderer renderer({kWidth, kHeight, 1});
+    Renderer renderer({kContextWidth, kContextHeight, 1});
     LiveObjects before;
     renderer.with_context([&] { before = LiveObjects(); });
     for (int i = 0; i < 20; ++i) renderer.upload(testing::box_mesh({0.3f, 0.3f, 0.3f}));

@@ -20,12 +20,12 @@ using tumble::testing::directory_entries;
 using ::testing::HasSubstr;
 using ::testing::ThrowsMessage;
 
-constexpr int kWidth = 96;
-constexpr int kHeight = 64;
+constexpr int kSinkWidth = 96;
+constexpr int kSinkHeight = 64;
 constexpr int kFrames = 12;
 
 /// kFrames frames of a box turning about z.
-std::vector<Image> turning_box_frames(int width = kWidth, int height = kHeight) {
+std::vector<Image> turning_box_frames(int width = kSinkWidth, int height = kSinkHeight) {
   Renderer renderer({width, height, 1});
   DrawList frame;
   frame.camera.eye = {3.0f, -4.0f, 2.5f};
@@ -40,7 +40,7 @@ std::vector<Image> turning_box_frames(int width = kWidth, int height = kHeight) 
   return images;
 }
 
-SinkOptions options(int width = kWidth, int height = kHeight) {
+SinkOptions options(int width = kSinkWidth, int height = kSinkHeight) {
   SinkOptions o;
   o.width = width;
   o.height = height;
@@ -72,8 +72,8 @@ TEST(ImageSink, PngSequenceWritesEveryFrameExactly) {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%06d.png", i);
     const Image back = read_png(dir / "frames" / name);
-    ASSERT_EQ(back.width, kWidth);
-    ASSERT_EQ(back.height, kHeight);
+    ASSERT_EQ(back.width, kSinkWidth);
+    ASSERT_EQ(back.height, kSinkHeight);
     EXPECT_EQ(back.rgba, images[static_cast<std::size_t>(i)].rgba) << name;
   }
   std::filesystem::remove_all(dir);
@@ -107,7 +107,7 @@ TEST(ImageSink, Mp4IsH264WithEveryFrameAndMatchesThePngs) {
       "' -vf 'select=eq(n\\,5)' -vframes 1 '" + decoded.string() + "'");
   ASSERT_EQ(result.status, 0) << result.err;
   const Image frame = read_png(decoded);
-  ASSERT_EQ(frame.width, kWidth);
+  ASSERT_EQ(frame.width, kSinkWidth);
   const double error = testing::mean_difference(frame, images[5]);
   EXPECT_LT(error, 4.0);
   // ...and it is frame 5, not a neighbour.
@@ -212,15 +212,15 @@ TEST(ImageSink, WrongFrameSizeIsRejected) {
 /// top-left corner and a mid-grey bar along the bottom, each placed by frame number.
 Image asymmetric_frame(int index) {
   Image image;
-  image.width = kWidth;
-  image.height = kHeight;
-  image.rgba.assign(4 * static_cast<std::size_t>(kWidth * kHeight), 0);
-  for (int y = 0; y < kHeight; ++y) {
-    for (int x = 0; x < kWidth; ++x) {
-      std::uint8_t* pixel = &image.rgba[4 * static_cast<std::size_t>(y * kWidth + x)];
+  image.width = kSinkWidth;
+  image.height = kSinkHeight;
+  image.rgba.assign(4 * static_cast<std::size_t>(kSinkWidth * kSinkHeight), 0);
+  for (int y = 0; y < kSinkHeight; ++y) {
+    for (int x = 0; x < kSinkWidth; ++x) {
+      std::uint8_t* pixel = &image.rgba[4 * static_cast<std::size_t>(y * kSinkWidth + x)];
       std::uint8_t value = 20;
       if (y < 24 && x >= 8 * index && x < 8 * index + 24) value = 230;  // top, moving right
-      if (y >= kHeight - 12) value = 128;                               // bottom bar
+      if (y >= kSinkHeight - 12) value = 128;                           // bottom bar
       pixel[0] = pixel[1] = pixel[2] = value;
       pixel[3] = 255;
     }
@@ -251,7 +251,7 @@ TEST(ImageSink, Mp4FramesAreUprightAndInOrder) {
     canvas.rgba.resize(image.rgba.size());
     std::copy(image.rgba.begin(), image.rgba.end(), canvas.rgba.begin());
     sink->write_taking(canvas);
-    EXPECT_EQ(canvas.width, kWidth);
+    EXPECT_EQ(canvas.width, kSinkWidth);
   }
   sink->finish();
   EXPECT_EQ(tumble::testing::probe_video(dir / "out.mp4"), "h264,96,64,6");
@@ -262,8 +262,8 @@ TEST(ImageSink, Mp4FramesAreUprightAndInOrder) {
         std::to_string(n) + ")' -vframes 1 '" + decoded.string() + "'");
     ASSERT_EQ(result.status, 0) << result.err;
     const Image frame = read_png(decoded);
-    ASSERT_EQ(frame.width, kWidth);
-    ASSERT_EQ(frame.height, kHeight);
+    ASSERT_EQ(frame.width, kSinkWidth);
+    ASSERT_EQ(frame.height, kSinkHeight);
     const double error = testing::mean_difference(frame, images[n]);
     EXPECT_LT(error, 4.0) << "frame " << n;
     // Upside down, the bar and the block trade places: far more than the coding error.

@@ -16,8 +16,8 @@ using testing::gradient_value;
 using testing::inside_distance;
 using testing::pinhole_project;
 
-constexpr int kWidth = 96;
-constexpr int kHeight = 64;
+constexpr int kFrameWidth = 96;
+constexpr int kFrameHeight = 64;
 
 DrawList plain_frame() {
   DrawList frame;
@@ -59,32 +59,32 @@ std::vector<Eigen::Vector2f> box_silhouette(const Camera& camera) {
                                 (i & 2 ? 1.0f : -1.0f) * kHalf.y(),
                                 (i & 4 ? 1.0f : -1.0f) * kHalf.z());
     const Eigen::Vector3f world = (box_pose() * local.homogeneous()).head<3>();
-    corners.push_back(pinhole_project(camera, kWidth, kHeight, world));
+    corners.push_back(pinhole_project(camera, kFrameWidth, kFrameHeight, world));
   }
   return convex_hull(corners);
 }
 
 TEST(Renderer, EmptySceneIsTheVerticalGradient) {
-  Renderer renderer({kWidth, kHeight, 1});
+  Renderer renderer({kFrameWidth, kFrameHeight, 1});
   const DrawList frame = plain_frame();
   const Image image = renderer.render(frame);
-  ASSERT_EQ(image.width, kWidth);
-  ASSERT_EQ(image.height, kHeight);
-  ASSERT_EQ(image.rgba.size(), 4u * kWidth * kHeight);
+  ASSERT_EQ(image.width, kFrameWidth);
+  ASSERT_EQ(image.height, kFrameHeight);
+  ASSERT_EQ(image.rgba.size(), 4u * kFrameWidth * kFrameHeight);
   // Row y shows top + (bottom - top) (y + 0.5) / H, identical across the row, opaque.
-  for (int y = 0; y < kHeight; ++y) {
-    for (int x = 0; x < kWidth; ++x) {
+  for (int y = 0; y < kFrameHeight; ++y) {
+    for (int x = 0; x < kFrameWidth; ++x) {
       ASSERT_TRUE(is_background(image, frame, x, y, 1.0f)) << "pixel " << x << "," << y;
       ASSERT_EQ(image.pixel(x, y)[3], 255);
     }
   }
   // Rows are top-down: the first row is the top colour.
   EXPECT_NEAR(image.pixel(0, 0)[0], 0.2 * 255, 3);
-  EXPECT_NEAR(image.pixel(0, kHeight - 1)[0], 0.8 * 255, 3);
+  EXPECT_NEAR(image.pixel(0, kFrameHeight - 1)[0], 0.8 * 255, 3);
 }
 
 TEST(Renderer, BoxCoversItsProjectedSilhouette) {
-  Renderer renderer({kWidth, kHeight, 1});
+  Renderer renderer({kFrameWidth, kFrameHeight, 1});
   DrawList frame = plain_frame();
   frame.meshes.push_back({renderer.upload(box_mesh(kHalf)), box_pose(), {0.9f, 0.9f, 0.9f, 1.0f}});
   const Image image = renderer.render(frame);
@@ -93,8 +93,8 @@ TEST(Renderer, BoxCoversItsProjectedSilhouette) {
   // Away from the outline (1 px), pixels are the box inside and the background outside.
   int inside = 0;
   int outside = 0;
-  for (int y = 0; y < kHeight; ++y) {
-    for (int x = 0; x < kWidth; ++x) {
+  for (int y = 0; y < kFrameHeight; ++y) {
+    for (int x = 0; x < kFrameWidth; ++x) {
       const float d =
           inside_distance(hull, {static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f});
       if (d > 1.0f) {
@@ -111,16 +111,16 @@ TEST(Renderer, BoxCoversItsProjectedSilhouette) {
 }
 
 TEST(Renderer, ArrowAlongPlusXAppearsRightOfCentre) {
-  Renderer renderer({kWidth, kHeight, 1});
+  Renderer renderer({kFrameWidth, kFrameHeight, 1});
   DrawList frame = plain_frame();
   frame.camera.eye = {0.0f, -5.0f, 0.0f};  // looking along +y, z up: +x is to the right
   frame.arrows.push_back({Eigen::Vector3f::Zero(), Eigen::Vector3f::UnitX(), {1, 0, 0, 1}, 0.1f});
   const Image image = renderer.render(frame);
 
-  int min_x = kWidth;
+  int min_x = kFrameWidth;
   int max_x = -1;
-  for (int y = 0; y < kHeight; ++y) {
-    for (int x = 0; x < kWidth; ++x) {
+  for (int y = 0; y < kFrameHeight; ++y) {
+    for (int x = 0; x < kFrameWidth; ++x) {
       if (is_background(image, frame, x, y, 6.0f)) continue;
       min_x = std::min(min_x, x);
       max_x = std::max(max_x, x);
@@ -128,14 +128,14 @@ TEST(Renderer, ArrowAlongPlusXAppearsRightOfCentre) {
     }
   }
   const Eigen::Vector2f tip =
-      pinhole_project(frame.camera, kWidth, kHeight, Eigen::Vector3f::UnitX());
-  EXPECT_GE(min_x, kWidth / 2 - 1);  // starts at the centre (the origin)
+      pinhole_project(frame.camera, kFrameWidth, kFrameHeight, Eigen::Vector3f::UnitX());
+  EXPECT_GE(min_x, kFrameWidth / 2 - 1);  // starts at the centre (the origin)
   EXPECT_NEAR(static_cast<float>(max_x) + 0.5f, tip.x(), 2.5f);  // ends at the projected tip
 }
 
 TEST(Renderer, MultisamplingChangesEdgesNotInteriors) {
-  Renderer aliased({kWidth, kHeight, 1});
-  Renderer smooth({kWidth, kHeight, 4});
+  Renderer aliased({kFrameWidth, kFrameHeight, 1});
+  Renderer smooth({kFrameWidth, kFrameHeight, 4});
   ASSERT_EQ(smooth.samples(), 4);
   DrawList frame = plain_frame();
   frame.meshes.push_back({aliased.upload(box_mesh(kHalf)), box_pose(), {0.9f, 0.9f, 0.9f, 1.0f}});
@@ -145,8 +145,8 @@ TEST(Renderer, MultisamplingChangesEdgesNotInteriors) {
   const auto hull = box_silhouette(frame.camera);
 
   int edge_changes = 0;
-  for (int y = 0; y < kHeight; ++y) {
-    for (int x = 0; x < kWidth; ++x) {
+  for (int y = 0; y < kFrameHeight; ++y) {
+    for (int x = 0; x < kFrameWidth; ++x) {
       const float d =
           inside_distance(hull, {static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f});
       const int difference = testing::pixel_difference(a, b, x, y);
@@ -165,16 +165,16 @@ TEST(Renderer, MultisamplingChangesEdgesNotInteriors) {
 }
 
 TEST(Renderer, RequestedSamplesAreClampedNotBlack) {
-  Renderer renderer({kWidth, kHeight, 64});
+  Renderer renderer({kFrameWidth, kFrameHeight, 64});
   EXPECT_GE(renderer.samples(), 1);
   EXPECT_LE(renderer.samples(), 64);
   const DrawList frame = plain_frame();
   const Image image = renderer.render(frame);
-  EXPECT_TRUE(is_background(image, frame, kWidth / 2, kHeight / 2, 1.0f));
+  EXPECT_TRUE(is_background(image, frame, kFrameWidth / 2, kFrameHeight / 2, 1.0f));
 }
 
 TEST(Renderer, GroundShadowDarkensTheGroundUnderTheLight) {
-  Renderer renderer({kWidth, kHeight, 1});
+  Renderer renderer({kFrameWidth, kFrameHeight, 1});
   DrawList frame = plain_frame();
   frame.style.ground = true;
   frame.style.ground_height = -0.8f;
@@ -184,7 +184,7 @@ TEST(Renderer, GroundShadowDarkensTheGroundUnderTheLight) {
   // camera, so look at a corner of the shadow near the box's lowest visible edge instead:
   // compare a point just outside the silhouette along -y in the world.
   const Eigen::Vector3f under = {0.2f, -0.1f - 0.45f, -0.8f};
-  const Eigen::Vector2f pixel = pinhole_project(frame.camera, kWidth, kHeight, under);
+  const Eigen::Vector2f pixel = pinhole_project(frame.camera, kFrameWidth, kFrameHeight, under);
   const int x = static_cast<int>(pixel.x());
   const int y = static_cast<int>(pixel.y());
   const Image shadowed = renderer.render(frame);
@@ -194,11 +194,11 @@ TEST(Renderer, GroundShadowDarkensTheGroundUnderTheLight) {
   const int dark = shadowed.pixel(x, y)[0];
   EXPECT_LT(dark, 0.8 * lit) << "pixel " << x << "," << y;
   // Far from the box the two agree.
-  EXPECT_LE(testing::pixel_difference(shadowed, unshadowed, 2, kHeight - 3), 1);
+  EXPECT_LE(testing::pixel_difference(shadowed, unshadowed, 2, kFrameHeight - 3), 1);
 }
 
 TEST(Renderer, TranslucentBoxShowsWhatIsBehind) {
-  Renderer renderer({kWidth, kHeight, 1});
+  Renderer renderer({kFrameWidth, kFrameHeight, 1});
   DrawList frame = plain_frame();
   const MeshId box = renderer.upload(box_mesh(kHalf));
   frame.meshes.push_back({box, box_pose(), {0.1f, 0.2f, 0.9f, 0.35f}});
@@ -216,7 +216,7 @@ TEST(Renderer, TranslucentBoxShowsWhatIsBehind) {
 }
 
 TEST(Renderer, GoldenShadedScene) {
-  Renderer renderer({kWidth, kHeight, 4});
+  Renderer renderer({kFrameWidth, kFrameHeight, 4});
   DrawList frame = plain_frame();
   frame.style.ground = true;
   frame.style.ground_height = -0.8f;
@@ -258,13 +258,14 @@ TEST(Renderer, GoldenOverlayPanelAndLabel) {
 }
 
 TEST(Renderer, LabelsAloneDrawText) {
-  Renderer renderer({kWidth, kHeight, 1});
+  Renderer renderer({kFrameWidth, kFrameHeight, 1});
   DrawList frame = plain_frame();
   frame.labels.push_back({"HELLO", std::nullopt, {10.0f, 20.0f}, {1, 1, 1, 1}});
   const Image image = renderer.render(frame);
   int changed = 0;
-  for (int y = 0; y < kHeight; ++y) {
-    for (int x = 0; x < kWidth; ++x) changed += !is_background(image, frame, x, y, 6.0f) ? 1 : 0;
+  for (int y = 0; y < kFrameHeight; ++y) {
+    for (int x = 0; x < kFrameWidth; ++x)
+      changed += !is_background(image, frame, x, y, 6.0f) ? 1 : 0;
   }
   EXPECT_GT(changed, 20);
   // Text only near its anchor (10, 20), 13 px font.
@@ -272,7 +273,7 @@ TEST(Renderer, LabelsAloneDrawText) {
 }
 
 TEST(Renderer, UnknownMeshIdIsAnError) {
-  Renderer renderer({kWidth, kHeight, 1});
+  Renderer renderer({kFrameWidth, kFrameHeight, 1});
   DrawList frame = plain_frame();
   frame.meshes.push_back({MeshId{7}, Eigen::Matrix4f::Identity(), {}});
   EXPECT_THAT([&] { renderer.render(frame); }, ::testing::ThrowsMessage<std::invalid_argument>(
@@ -280,7 +281,7 @@ TEST(Renderer, UnknownMeshIdIsAnError) {
 }
 
 TEST(Renderer, MalformedMeshIsRejected) {
-  Renderer renderer({kWidth, kHeight, 1});
+  Renderer renderer({kFrameWidth, kFrameHeight, 1});
   MeshData mesh = box_mesh(kHalf);
   mesh.indices[5] = 99;
   EXPECT_THAT([&] { renderer.upload(mesh); }, ::testing::ThrowsMessage<std::invalid_argument>(

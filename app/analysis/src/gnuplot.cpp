@@ -14,10 +14,6 @@
 namespace tumble::app {
 namespace {
 
-std::string quoted(const std::string& text) {
-  return gnuplot_quoted(text);
-}
-
 /// The shell-quoted form of a path.
 std::string shell_quoted(const std::string& text) {
   std::string out = "'";
@@ -39,9 +35,9 @@ constexpr int kFloorPointType = 10;
 
 /// The drawing commands of one plot (after `set terminal` and `set output`).
 void plot_commands(std::ostream& script, const LogLogPlot& plot, std::size_t index) {
-  script << "set title " << quoted(plot.title) << " noenhanced\n"
-         << "set xlabel " << quoted(plot.x_label) << " noenhanced\n"
-         << "set ylabel " << quoted(plot.y_label) << " noenhanced\n";
+  script << "set title " << gnuplot_quoted(plot.title) << " noenhanced\n"
+         << "set xlabel " << gnuplot_quoted(plot.x_label) << " noenhanced\n"
+         << "set ylabel " << gnuplot_quoted(plot.y_label) << " noenhanced\n";
   std::vector<std::size_t> drawn;
   bool zeros = false;
   for (std::size_t s = 0; s < plot.series.size(); ++s) {
@@ -76,10 +72,10 @@ void plot_commands(std::ostream& script, const LogLogPlot& plot, std::size_t ind
     const std::string block = "$p" + std::to_string(index) + "_" + std::to_string(drawn[j]);
     const auto nonzero = std::count_if(series.points.begin(), series.points.end(),
                                        [](const PlotPoint& p) { return drawable(p) && p.y > 0.0; });
-    const std::string title = " title " + quoted(series.title) + " noenhanced";
+    const std::string title = " title " + gnuplot_quoted(series.title) + " noenhanced";
     script << (j ? ", \\\n     " : "");
     if (nonzero > 0) {
-      script << block << " " << with << " linecolor rgb " << quoted(series.style.colour)
+      script << block << " " << with << " linecolor rgb " << gnuplot_quoted(series.style.colour)
              << " pointtype " << series.style.point_type << title;
     }
     if (nonzero < static_cast<std::ptrdiff_t>(series.points.size()) &&
@@ -87,7 +83,7 @@ void plot_commands(std::ostream& script, const LogLogPlot& plot, std::size_t ind
                     [](const PlotPoint& p) { return drawable(p) && p.y == 0.0; })) {
       // The series' zeros; they carry its title when it has nothing else to show.
       script << (nonzero > 0 ? ", \\\n     " : "") << block
-             << "_zero using 1:2 with points linecolor rgb " << quoted(series.style.colour)
+             << "_zero using 1:2 with points linecolor rgb " << gnuplot_quoted(series.style.colour)
              << " pointtype " << kFloorPointType << " pointsize 1.6"
              << (nonzero > 0 ? " notitle" : title);
     }
@@ -185,11 +181,11 @@ std::string gnuplot_script(const std::vector<LogLogPlot>& plots) {
          << "set key outside right top box\nset mxtics 10\nset mytics 10\n";
   for (std::size_t p = 0; p < plots.size(); ++p) {
     const std::string stem = plots[p].file_stem.string();
-    script << "set terminal png size 1000,650 font ',11'\nset output " << quoted(stem + ".png")
-           << "\n";
+    script << "set terminal png size 1000,650 font ',11'\nset output "
+           << gnuplot_quoted(stem + ".png") << "\n";
     plot_commands(script, plots[p], p);
     script << "set output\nset terminal svg size 1000,650 dynamic font 'sans,12'\nset output "
-           << quoted(stem + ".svg") << "\n";
+           << gnuplot_quoted(stem + ".svg") << "\n";
     plot_commands(script, plots[p], p);
     script << "set output\n";
   }

@@ -41,10 +41,6 @@ constexpr StabilityOutcome kLegend[] = {StabilityOutcome::kStable, StabilityOutc
                                         StabilityOutcome::kBlewUp, StabilityOutcome::kUnchecked,
                                         StabilityOutcome::kSkipped};
 
-std::string quoted(const std::string& text) {
-  return gnuplot_quoted(text);
-}
-
 std::string hex(long value) {
   char buffer[16];
   std::snprintf(buffer, sizeof buffer, "#%06lx", value);
@@ -59,24 +55,24 @@ std::string panels_script(const std::vector<HeatMapPanel>& panels, std::size_t l
   for (std::size_t p = 0; p < panels.size(); ++p) {
     const HeatMapPanel& panel = panels[p];
     const std::size_t rows = panel.rows.size(), columns = panel.columns.size();
-    s << "set title " << quoted(panel.title) << "\n";
-    s << "set xlabel " << quoted(panel.x_label) << "\n";
+    s << "set title " << gnuplot_quoted(panel.title) << "\n";
+    s << "set xlabel " << gnuplot_quoted(panel.x_label) << "\n";
     s << "set xrange [-0.5:" << static_cast<double>(columns) - 0.5 << "]\n";
     s << "set yrange [-0.5:" << static_cast<double>(rows) - 0.5 << "]\n";
     s << "set xtics (";
     for (std::size_t c = 0; c < columns; ++c) {
-      s << (c ? ", " : "") << quoted(panel.columns[c]) << " " << c;
+      s << (c ? ", " : "") << gnuplot_quoted(panel.columns[c]) << " " << c;
     }
     s << ")\nset ytics (";
     for (std::size_t r = 0; r < rows; ++r) {
-      s << (r ? ", " : "") << quoted(panel.rows[r]) << " " << rows - 1 - r;
+      s << (r ? ", " : "") << gnuplot_quoted(panel.rows[r]) << " " << rows - 1 - r;
     }
     s << ")\n";
     s << "plot $panel" << p << " using 1:2:(0.5):(0.5):3 with boxxy lc rgb variable notitle, "
       << "$panel" << p << " using 1:2:4 with labels font \",8\" notitle";
     for (const StabilityOutcome outcome : kLegend) {
-      s << ", NaN with boxes lc rgb " << quoted(hex(colour(outcome))) << " title "
-        << quoted(outcome_name(outcome));
+      s << ", NaN with boxes lc rgb " << gnuplot_quoted(hex(colour(outcome))) << " title "
+        << gnuplot_quoted(outcome_name(outcome));
     }
     s << "\n";
   }
@@ -114,10 +110,10 @@ std::string heat_map_script(const std::vector<HeatMapPanel>& panels,
     << "set key outside right top\nset tics nomirror\n";
   // The same plot twice: PNG, then SVG.
   s << "set terminal pngcairo size " << width << "," << height << " font \",9\"\n"
-    << "set output " << quoted(png.string()) << "\n"
+    << "set output " << gnuplot_quoted(png.string()) << "\n"
     << panels_script(panels, layout_rows, layout_columns) << "set output\n";
   s << "set terminal svg size " << width << "," << height << " font \",9\"\n"
-    << "set output " << quoted(svg.string()) << "\n"
+    << "set output " << gnuplot_quoted(svg.string()) << "\n"
     << panels_script(panels, layout_rows, layout_columns) << "set output\n";
   return s.str();
 }

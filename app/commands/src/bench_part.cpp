@@ -9,7 +9,9 @@
 
 namespace tumble::app {
 
-using nlohmann::json;
+namespace {
+using nlohmann::json;  // file-local (a namespace-wide name would shadow `json` members)
+}  // namespace
 
 json bench_job(const BenchOptions& options) {
   return {{"command", "bench"},

@@ -13,7 +13,9 @@
 
 namespace tumble::app {
 
-using nlohmann::json;
+namespace {
+using nlohmann::json;  // file-local (a namespace-wide name would shadow `json` members)
+}  // namespace
 
 json scene_inputs_json(const std::vector<std::filesystem::path>& scenes) {
   json inputs = json::array();

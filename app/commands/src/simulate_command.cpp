@@ -107,9 +107,9 @@ std::optional<double> exact_orientation_error(const engine::BodyModel& body,
   }
 }
 
-int list_integrators(bool json, std::ostream& out) {
+int list_integrators(bool as_json, std::ostream& out) {
   const auto& catalog = engine::integrator_catalog();
-  if (json) {
+  if (as_json) {
     nlohmann::json list = nlohmann::json::array();
     for (const auto& info : catalog) {
       list.push_back({{"name", info.name},

@@ -10,7 +10,9 @@
 
 namespace tumble::app {
 
-using nlohmann::json;
+namespace {
+using nlohmann::json;  // file-local (a namespace-wide name would shadow `json` members)
+}  // namespace
 
 json stability_job(const StabilityOptions& options) {
   return {{"command", "stability"},

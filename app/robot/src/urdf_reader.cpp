@@ -10,7 +10,7 @@ namespace tumble::app::robot {
 namespace {
 
 /// What the reader of one file knows: the file, for messages, and how to resolve meshes.
-struct Context {
+struct UrdfContext {
   const std::filesystem::path& file;
   const ReadOptions& options;
 };
@@ -22,7 +22,8 @@ std::string attribute_or(const pugi::xml_node& node, const char* name, const cha
 }
 
 /// The attribute's value; throws InputError "WHERE: <ELEMENT> has no NAME" when absent.
-std::string required(const pugi::xml_node& node, const char* name, const std::string& where) {
+std::string required_attribute(const pugi::xml_node& node, const char* name,
+                               const std::string& where) {
   const pugi::xml_attribute attribute = node.attribute(name);
   if (!attribute) {
     throw InputError(where + ": <" + node.name() + "> has no " + name + " attribute");
@@ -73,28 +74,29 @@ StatedInertial stated_inertial(const pugi::xml_node& inertial, const std::string
 /// The shape of a <geometry> element.
 std::variant<engine::Shape, MeshGeometry> geometry_shape(const pugi::xml_node& geometry,
                                                          const std::string& where,
-                                                         const Context& context) {
+                                                         const UrdfContext& context) {
   if (const pugi::xml_node box = geometry.child("box")) {
-    return engine::Box{parse_positive_vector(required(box, "size", where), where + ": box size")};
+    return engine::Box{
+        parse_positive_vector(required_attribute(box, "size", where), where + ": box size")};
   }
   if (const pugi::xml_node sphere = geometry.child("sphere")) {
     return engine::Sphere{
-        parse_positive(required(sphere, "radius", where), where + ": sphere radius")};
+        parse_positive(required_attribute(sphere, "radius", where), where + ": sphere radius")};
   }
   for (const char* kind : {"cylinder", "capsule"}) {
     const pugi::xml_node node = geometry.child(kind);
     if (!node) continue;
     const double radius =
-        parse_positive(required(node, "radius", where), where + ": " + kind + " radius");
+        parse_positive(required_attribute(node, "radius", where), where + ": " + kind + " radius");
     const double length =
-        parse_positive(required(node, "length", where), where + ": " + kind + " length");
+        parse_positive(required_attribute(node, "length", where), where + ": " + kind + " length");
     if (std::string(kind) == "cylinder") return engine::Cylinder{radius, length};
     return engine::Capsule{radius, length};
   }
   if (const pugi::xml_node mesh = geometry.child("mesh")) {
     MeshGeometry out;
-    out.file = resolve_mesh_path(required(mesh, "filename", where), context.file.parent_path(),
-                                 context.options.packages, where);
+    out.file = resolve_mesh_path(required_attribute(mesh, "filename", where),
+                                 context.file.parent_path(), context.options.packages, where);
     if (const pugi::xml_attribute scale = mesh.attribute("scale")) {
       const std::vector<double> s = parse_numbers(scale.value(), {1, 3}, where + ": mesh scale");
       out.scale =
@@ -108,11 +110,12 @@ std::variant<engine::Shape, MeshGeometry> geometry_shape(const pugi::xml_node& g
   throw InputError(where + ": <geometry> has no box, cylinder, sphere, capsule or mesh");
 }
 
-Link read_link(const pugi::xml_node& node, const std::string& text, const Context& context) {
+Link read_urdf_link(const pugi::xml_node& node, const std::string& text,
+                    const UrdfContext& context) {
   Link link;
   const std::string file = context.file.string();
-  link.name =
-      required(node, "name", file + ": line " + std::to_string(line_of(text, node.offset_debug())));
+  link.name = required_attribute(
+      node, "name", file + ": line " + std::to_string(line_of(text, node.offset_debug())));
   const std::string where = file + ": link '" + link.name + "'";
   const pugi::xml_node inertial = node.child("inertial");
   if (inertial && inertial.next_sibling("inertial")) {
@@ -147,9 +150,9 @@ Robot read_urdf(const std::filesystem::path& file, std::string text, const ReadO
   load_robot_document(document, robot.text, file);
   const pugi::xml_node root = document.child("robot");
   if (!root) throw InputError(file.string() + ": not a URDF file: it has no <robot> element");
-  const Context context{file, options};
+  const UrdfContext context{file, options};
   for (const pugi::xml_node node : root.children("link")) {
-    robot.links.push_back(read_link(node, robot.text, context));
+    robot.links.push_back(read_urdf_link(node, robot.text, context));
   }
   return robot;
 }

@@ -9,7 +9,9 @@
 namespace tumble::app {
 
 using engine::InputError;
-using nlohmann::json;
+namespace {
+using nlohmann::json;  // file-local (a namespace-wide name would shadow `json` members)
+}  // namespace
 
 std::string number_text(double value) {
   if (std::isnan(value)) return "nan";

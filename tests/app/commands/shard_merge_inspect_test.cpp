@@ -72,9 +72,9 @@ class ShardMergeInspect : public ::testing::Test {
 
 TEST_F(ShardMergeInspect, PartsMergeIntoTheUnshardedJsonLinesAndJson) {
   const CommandResult jsonl = run_command(inspect("--jsonl"));
-  const CommandResult json = run_command(inspect("--json"));
+  const CommandResult as_json = run_command(inspect("--json"));
   ASSERT_EQ(jsonl.status, 0) << jsonl.err;
-  ASSERT_EQ(json.status, 0) << json.err;
+  ASSERT_EQ(as_json.status, 0) << as_json.err;
   const std::vector<fs::path> names = parts(4);
   // 6 files in 4 shards: 2, 2, 1, 1, each file once; the manifest first, then its objects with
   // their place in the whole list.
@@ -98,10 +98,10 @@ TEST_F(ShardMergeInspect, PartsMergeIntoTheUnshardedJsonLinesAndJson) {
   ASSERT_EQ(merge(names, dir_ / "all.jsonl").status, 0);
   EXPECT_EQ(read_text(dir_ / "all.jsonl"), jsonl.out);
   ASSERT_EQ(merge(names, dir_ / "all.json").status, 0);
-  EXPECT_EQ(read_text(dir_ / "all.json"), json.out);
+  EXPECT_EQ(read_text(dir_ / "all.json"), as_json.out);
   // -o without --shard writes what stdout would get.
   ASSERT_EQ(run_command(inspect("--json -o '" + (dir_ / "direct.json").string() + "'")).status, 0);
-  EXPECT_EQ(read_text(dir_ / "direct.json"), json.out);
+  EXPECT_EQ(read_text(dir_ / "direct.json"), as_json.out);
 }
 
 TEST_F(ShardMergeInspect, RefusedFilesStayInJsonLinesAndStopAJsonMerge) {
@@ -112,9 +112,9 @@ TEST_F(ShardMergeInspect, RefusedFilesStayInJsonLinesAndStopAJsonMerge) {
   ASSERT_EQ(merge(names, dir_ / "all.jsonl").status, 0);
   EXPECT_EQ(read_text(dir_ / "all.jsonl"), jsonl.out);
   EXPECT_THAT(read_text(dir_ / "all.jsonl"), HasSubstr("broken.stl"));
-  const CommandResult json = merge(names, dir_ / "all.json");
-  EXPECT_EQ(json.status, 1);
-  EXPECT_THAT(json.err, HasSubstr("broken.stl"));
+  const CommandResult as_json = merge(names, dir_ / "all.json");
+  EXPECT_EQ(as_json.status, 1);
+  EXPECT_THAT(as_json.err, HasSubstr("broken.stl"));
   EXPECT_FALSE(fs::exists(dir_ / "all.json"));
 }
 

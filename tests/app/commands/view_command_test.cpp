@@ -28,15 +28,16 @@ using tumble::testing::probe_video;
 using tumble::testing::run_command;
 using tumble::testing::tumble_executable;
 
-constexpr int kWidth = 1280;
-constexpr int kHeight = 720;
+constexpr int kViewCommandWidth = 1280;
+constexpr int kViewCommandHeight = 720;
 /// Left of this x the window shows the 3D view (the control panel is on the right).
 constexpr int kSceneRight = 880;
 /// Above this y nothing but the view and the scene's overlay (notices appear below it).
 constexpr int kSceneBottom = 560;
 
 constexpr PixelRegion kSceneRegion{0, 0, kSceneRight, kSceneBottom};
-constexpr PixelRegion kPanelRegion{kWidth - 360, 40, kWidth - 20, kHeight - 20};
+constexpr PixelRegion kPanelRegion{kViewCommandWidth - 360, 40, kViewCommandWidth - 20,
+                                   kViewCommandHeight - 20};
 
 /// Pixels of `region` matching `test(r, g, b)`.
 template <typename Test>
@@ -65,8 +66,8 @@ bool dark(int r, int g, int b) {
 /// control panel on the right, whose grey background (between the blue headers and the plot
 /// frames) covers at least a third of its region.
 void expect_body_and_panel(const render::Image& window) {
-  ASSERT_EQ(window.width, kWidth);
-  ASSERT_EQ(window.height, kHeight);
+  ASSERT_EQ(window.width, kViewCommandWidth);
+  ASSERT_EQ(window.height, kViewCommandHeight);
   EXPECT_GT(count_pixels(window, kSceneRegion, orange), 3000u);
   const std::size_t panel_area = static_cast<std::size_t>(kPanelRegion.x1 - kPanelRegion.x0) *
                                  static_cast<std::size_t>(kPanelRegion.y1 - kPanelRegion.y0);
@@ -287,7 +288,7 @@ TEST_F(ViewCommand, CtrlOOpensTheFilesSectionWhoseRecordButtonRecordsTheView) {
   EXPECT_NEAR(static_cast<double>(frames.size()), 31.0, 6.0);
   for (const char* name : {"frame_000000.png", "frame_000010.png"}) {
     const render::Image frame = shot(std::string("frames/") + name);
-    EXPECT_EQ(frame.width, kWidth);
+    EXPECT_EQ(frame.width, kViewCommandWidth);
     EXPECT_GT(count_pixels(frame, kSceneRegion, orange), 3000u) << name;
     EXPECT_EQ(count_pixels(frame, kPanelRegion, dark), 0u) << name << ": panels recorded";
   }
@@ -339,7 +340,7 @@ TEST_F(ViewCommand, RealKeyPressesFromXdotoolReachTheViewer) {
   EXPECT_EQ(pixels_differing(paused1, shot("paused2.png"), 0, kSceneRegion), 0u);
   EXPECT_GT(pixels_differing(shot("playing.png"), paused1, 0, kSceneRegion), 500u);
   // Ctrl+P, with the modifier from the keyboard state.
-  EXPECT_EQ(shot("t_handle_flip-1.png").width, kWidth);
+  EXPECT_EQ(shot("t_handle_flip-1.png").width, kViewCommandWidth);
 }
 
 TEST_F(ViewCommand, WithoutADisplayItSaysSoAndFails) {

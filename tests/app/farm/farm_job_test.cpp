@@ -29,7 +29,7 @@ FarmJob parse(const Words& words) {
   return parse_farm_job(words, "/work/dir");
 }
 
-std::string error_of(const Words& words) {
+std::string farm_job_error_of(const Words& words) {
   return tumble::testing::input_error_of([&] { parse(words); }, "the command");
 }
 
@@ -80,31 +80,33 @@ TEST(FarmJob, WordsAfterTheCommandsOwnDoubleDashArePaths) {
 }
 
 TEST(FarmJob, RefusesWhatCannotBeFarmed) {
-  EXPECT_THAT(error_of({}), HasSubstr("no tumble command"));
-  EXPECT_THAT(error_of({"tumble"}), HasSubstr("no tumble command after 'tumble'"));
-  EXPECT_THAT(error_of({"ls", "-l"}), HasSubstr("'ls': expected a tumble command"));
-  EXPECT_THAT(error_of({"tumble", "simulate", "s.json"}),
+  EXPECT_THAT(farm_job_error_of({}), HasSubstr("no tumble command"));
+  EXPECT_THAT(farm_job_error_of({"tumble"}), HasSubstr("no tumble command after 'tumble'"));
+  EXPECT_THAT(farm_job_error_of({"ls", "-l"}), HasSubstr("'ls': expected a tumble command"));
+  EXPECT_THAT(farm_job_error_of({"tumble", "simulate", "s.json"}),
               HasSubstr("'tumble simulate' cannot be farmed"));
-  EXPECT_EQ(error_of({"render", "s.json", "--shard", "0/2", "-o", "a.mp4"}),
+  EXPECT_EQ(farm_job_error_of({"render", "s.json", "--shard", "0/2", "-o", "a.mp4"}),
             "tumble render: already has --shard; give the whole command: tumble farm adds "
             "--shard I/N to each part");
-  EXPECT_THAT(error_of({"render", "s.json", "--shard=0/2", "-o", "a.mp4"}),
+  EXPECT_THAT(farm_job_error_of({"render", "s.json", "--shard=0/2", "-o", "a.mp4"}),
               HasSubstr("already has --shard"));
-  EXPECT_EQ(error_of({"render", "s.json", "--sise", "9x9", "-o", "a.mp4"}),
+  EXPECT_EQ(farm_job_error_of({"render", "s.json", "--sise", "9x9", "-o", "a.mp4"}),
             "tumble render: unknown option '--sise' (see tumble render --help)");
-  EXPECT_EQ(error_of({"render", "s.json", "-o"}), "tumble render: option '-o' needs a value");
-  EXPECT_EQ(error_of({"render", "s.json", "--size"}),
+  EXPECT_EQ(farm_job_error_of({"render", "s.json", "-o"}),
+            "tumble render: option '-o' needs a value");
+  EXPECT_EQ(farm_job_error_of({"render", "s.json", "--size"}),
             "tumble render: option '--size' needs a value");
-  EXPECT_THAT(error_of({"render", "s.json", "--no-overlay=1", "-o", "a.mp4"}),
+  EXPECT_THAT(farm_job_error_of({"render", "s.json", "--no-overlay=1", "-o", "a.mp4"}),
               HasSubstr("option '--no-overlay' takes no value"));
-  EXPECT_EQ(error_of({"bench", "s.json"}),
+  EXPECT_EQ(farm_job_error_of({"bench", "s.json"}),
             "tumble bench: no -o OUT; a farmed job needs an output to merge into");
-  EXPECT_EQ(error_of({"bench", "s.json", "-o", "a", "-o", "b"}), "tumble bench: -o is given twice");
-  EXPECT_THAT(error_of({"render", "s.json", "-o", "a.avi"}),
+  EXPECT_EQ(farm_job_error_of({"bench", "s.json", "-o", "a", "-o", "b"}),
+            "tumble bench: -o is given twice");
+  EXPECT_THAT(farm_job_error_of({"render", "s.json", "-o", "a.avi"}),
               HasSubstr("-o 'a.avi': expected a .mp4, .webm or .gif file"));
-  EXPECT_THAT(error_of({"inspect", "x.stl", "-o", "m.csv"}),
+  EXPECT_THAT(farm_job_error_of({"inspect", "x.stl", "-o", "m.csv"}),
               HasSubstr("a farmed inspect writes .jsonl or .json"));
-  EXPECT_THAT(error_of({"render", "a\nb.json", "-o", "a.mp4"}), HasSubstr("newline"));
+  EXPECT_THAT(farm_job_error_of({"render", "a\nb.json", "-o", "a.mp4"}), HasSubstr("newline"));
 }
 
 /// Every option of the real command `name` (its CLI11 definition): names and whether it takes

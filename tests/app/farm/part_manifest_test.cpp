@@ -36,7 +36,7 @@ PartManifest render_part(int index, int count) {
 
 /// The InputError message of `action()`; fails the test when nothing is thrown.
 template <typename Action>
-std::string error_of(Action&& action) {
+std::string part_manifest_error_of(Action&& action) {
   try {
     action();
   } catch (const InputError& error) {
@@ -85,21 +85,21 @@ TEST(PartManifest, RefusesBadFieldsNamingThem) {
   for (const auto& [pointer, expected] : cases) {
     json bad = good;
     bad[json::json_pointer(pointer)] = nullptr;
-    EXPECT_THAT(error_of([&] { parse_manifest(bad, "parts/a"); }),
-                testing::AllOf(::testing::StartsWith("parts/a: "), HasSubstr(expected)))
+    EXPECT_THAT(part_manifest_error_of([&] { parse_manifest(bad, "parts/a"); }),
+                ::testing::AllOf(::testing::StartsWith("parts/a: "), HasSubstr(expected)))
         << pointer;
   }
   json no_kind = good;
   no_kind.erase("kind");
-  EXPECT_EQ(error_of([&] { parse_manifest(no_kind, "parts/a"); }),
+  EXPECT_EQ(part_manifest_error_of([&] { parse_manifest(no_kind, "parts/a"); }),
             "parts/a: field 'kind': missing");
   json out_of_range = good;
   out_of_range["shard"]["index"] = 2;
-  EXPECT_THAT(error_of([&] { parse_manifest(out_of_range, "m"); }),
+  EXPECT_THAT(part_manifest_error_of([&] { parse_manifest(out_of_range, "m"); }),
               HasSubstr("field 'shard.index': expected 0 to count - 1"));
   json edited = good;
   edited["job"]["options"]["fps"] = 60;
-  EXPECT_THAT(error_of([&] { parse_manifest(edited, "m"); }),
+  EXPECT_THAT(part_manifest_error_of([&] { parse_manifest(edited, "m"); }),
               HasSubstr("field 'job_digest': does not match the job"));
 }
 
@@ -116,55 +116,55 @@ TEST(PartManifest, ReadsFolderAndJsonlParts) {
   EXPECT_EQ(read_part_manifest(dir / "rows.jsonl").kind, "inspect");
 
   std::ofstream(dir / "plain.jsonl") << "{\"mesh\": \"a.stl\"}\n";
-  EXPECT_THAT(error_of([&] { read_part_manifest(dir / "plain.jsonl"); }),
+  EXPECT_THAT(part_manifest_error_of([&] { read_part_manifest(dir / "plain.jsonl"); }),
               HasSubstr("plain.jsonl: not a tumble part"));
   fs::create_directories(dir / "empty");
-  EXPECT_THAT(error_of([&] { read_part_manifest(dir / "empty"); }),
+  EXPECT_THAT(part_manifest_error_of([&] { read_part_manifest(dir / "empty"); }),
               HasSubstr("empty: not a tumble part (no "));
-  EXPECT_THAT(error_of([&] { read_part_manifest(dir / "absent.jsonl"); }),
+  EXPECT_THAT(part_manifest_error_of([&] { read_part_manifest(dir / "absent.jsonl"); }),
               HasSubstr("cannot read part"));
   fs::remove_all(dir);
 }
 
 TEST(PartManifest, PartsOfOneJobComeBackInShardOrder) {
   const auto parts = parts_of({render_part(2, 3), render_part(0, 3), render_part(1, 3)});
-  EXPECT_THAT(check_parts_cover_job(parts), testing::ElementsAre(1U, 2U, 0U));
-  EXPECT_THAT(check_parts_cover_job(parts_of({render_part(0, 1)})), testing::ElementsAre(0U));
+  EXPECT_THAT(check_parts_cover_job(parts), ::testing::ElementsAre(1U, 2U, 0U));
+  EXPECT_THAT(check_parts_cover_job(parts_of({render_part(0, 1)})), ::testing::ElementsAre(0U));
 }
 
 TEST(PartManifest, MissingDuplicateAndForeignPartsAreNamed) {
-  EXPECT_EQ(error_of([&] {
+  EXPECT_EQ(part_manifest_error_of([&] {
               check_parts_cover_job(parts_of({render_part(0, 4), render_part(1, 4)}));
             }),
             "shards 2/4, 3/4 missing (given: 0/4, 1/4)");
   EXPECT_EQ(
-      error_of([&] {
+      part_manifest_error_of([&] {
         check_parts_cover_job(parts_of({render_part(0, 2), render_part(1, 2), render_part(1, 2)}));
       }),
       "p1/2: shard 1/2 again (also 'p1/2')");
   PartManifest foreign = render_part(1, 2);
   foreign.job["options"]["fps"] = 24;
-  EXPECT_EQ(error_of([&] {
+  EXPECT_EQ(part_manifest_error_of([&] {
               check_parts_cover_job(parts_of({render_part(0, 2), foreign}));
             }),
             "p1/2: a part of another job than 'p0/2' (job field 'options.fps': 24, not 30)");
   PartManifest other_kind = render_part(1, 2);
   other_kind.kind = "compare";
-  EXPECT_THAT(error_of([&] {
+  EXPECT_THAT(part_manifest_error_of([&] {
                 check_parts_cover_job(parts_of({render_part(0, 2), other_kind}));
               }),
               HasSubstr("p1/2: a compare part, not render"));
   PartManifest other_version = render_part(1, 2);
   other_version.tumble_version = "0.2.0";
-  EXPECT_THAT(error_of([&] {
+  EXPECT_THAT(part_manifest_error_of([&] {
                 check_parts_cover_job(parts_of({render_part(0, 2), other_version}));
               }),
               HasSubstr("written by tumble 0.2.0"));
-  EXPECT_THAT(error_of([&] {
+  EXPECT_THAT(part_manifest_error_of([&] {
                 check_parts_cover_job(parts_of({render_part(0, 2), render_part(1, 3)}));
               }),
               HasSubstr("p1/3: shard 1/3 of 480 items does not match"));
-  EXPECT_EQ(error_of([&] { check_parts_cover_job({}); }), "no parts given");
+  EXPECT_EQ(part_manifest_error_of([&] { check_parts_cover_job({}); }), "no parts given");
 }
 
 }  // namespace

@@ -150,7 +150,7 @@ TEST(Shard, StridedTakesEveryNth) {
   for (std::size_t item = 0; item < 12; ++item) {
     if (in_shard(item, 12, Shard{1, 5}, ShardSplit::kStrided)) items.push_back(item);
   }
-  EXPECT_THAT(items, testing::ElementsAre(1U, 6U, 11U));
+  EXPECT_THAT(items, ::testing::ElementsAre(1U, 6U, 11U));
 }
 
 TEST(Shard, SplitNamesRoundTrip) {

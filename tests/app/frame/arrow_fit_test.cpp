@@ -12,8 +12,8 @@
 namespace tumble::app {
 namespace {
 
-constexpr int kWidth = 80;
-constexpr int kHeight = 60;
+constexpr int kArrowFitWidth = 80;
+constexpr int kArrowFitHeight = 60;
 
 /// A free brick (inertia only, so its box has sides ~1 m) with long arrows, seen side-on from +x, 4
 /// m away, through a 20 degree field (0.7 m half-height).
@@ -26,7 +26,7 @@ constexpr const char* kCloseScene = R"({
 })";
 
 TEST(ArrowFit, TipsOutsideTheFrameAreShrunkIntoItAlongTheirDirection) {
-  const testing::FrameSceneSetup setup(kCloseScene, kWidth, kHeight);
+  const testing::FrameSceneSetup setup(kCloseScene, kArrowFitWidth, kArrowFitHeight);
   const engine::Simulation simulation = setup.simulation();
   FrameBuilder builder = setup.builder();
   builder.observe(simulation);
@@ -36,12 +36,13 @@ TEST(ArrowFit, TipsOutsideTheFrameAreShrunkIntoItAlongTheirDirection) {
   // radii of a ~1.6 m box) are not: the fit must shrink them, and say so.
   ASSERT_FALSE(list.arrows.empty());
   for (const render::Arrow& arrow : list.arrows) {
-    const Eigen::Vector3f tip = render::project_to_pixels(list.camera, kWidth, kHeight, arrow.to);
+    const Eigen::Vector3f tip =
+        render::project_to_pixels(list.camera, kArrowFitWidth, kArrowFitHeight, arrow.to);
     EXPECT_GT(tip.z(), 0.0f);
     EXPECT_GE(tip.x(), 0.0f);
-    EXPECT_LE(tip.x(), static_cast<float>(kWidth));
+    EXPECT_LE(tip.x(), static_cast<float>(kArrowFitWidth));
     EXPECT_GE(tip.y(), 0.0f);
-    EXPECT_LE(tip.y(), static_cast<float>(kHeight));
+    EXPECT_LE(tip.y(), static_cast<float>(kArrowFitHeight));
   }
   // The L arrow still points along L.
   const Eigen::Vector3f momentum =

@@ -19,12 +19,13 @@ namespace {
 
 using ::testing::HasSubstr;
 
-constexpr int kWidth = 64;
-constexpr int kHeight = 48;
+constexpr int kFrameBuilderWidth = 64;
+constexpr int kFrameBuilderHeight = 48;
 
 /// A scene drawn at the tests' frame size.
 struct SceneSetup : testing::FrameSceneSetup {
-  explicit SceneSetup(const std::string& text) : FrameSceneSetup(text, kWidth, kHeight) {}
+  explicit SceneSetup(const std::string& text)
+      : FrameSceneSetup(text, kFrameBuilderWidth, kFrameBuilderHeight) {}
 };
 
 /// An asymmetric brick spinning near its middle axis (it flips), given by its inertia only.
@@ -43,7 +44,7 @@ std::string brick_scene(const std::string& render, const std::string& integrator
 }
 
 /// Advances to the frame time `time` (the last step at or before it).
-void advance_to(engine::Simulation& simulation, double time) {
+void frame_builder_advance_to(engine::Simulation& simulation, double time) {
   const double dt = simulation.settings().dt;
   while (!simulation.finished() && simulation.time() + 0.5 * dt <= time) simulation.step();
 }
@@ -59,7 +60,7 @@ TEST(FrameBuilder, OmegaAndMomentumArrowsPointAlongTheState) {
   engine::Simulation simulation = setup.simulation();
   FrameBuilder builder = setup.builder();
   for (int frame = 0; frame <= 90; ++frame) {
-    advance_to(simulation, frame / 30.0);
+    frame_builder_advance_to(simulation, frame / 30.0);
     builder.observe(simulation);
     if (frame % 15 != 0) continue;
     const render::DrawList list = builder.build(simulation);
@@ -86,7 +87,7 @@ TEST(FrameBuilder, MomentumArrowStaysFixedForATorqueFreeBody) {
   EXPECT_GT(length, 0.0f);
   double omega_change = 0.0;
   for (int frame = 1; frame <= 120; ++frame) {
-    advance_to(simulation, frame / 20.0);
+    frame_builder_advance_to(simulation, frame / 20.0);
     builder.observe(simulation);
     const render::Arrow arrow = builder.build(simulation).arrows.at(0);
     // The same arrow to float precision (L is exactly conserved by RK4 for a free body).
@@ -107,7 +108,7 @@ TEST(FrameBuilder, BodyAndPrincipalAxesFollowTheOrientation) {
       R"({"show": {"angular_velocity": false, "angular_momentum": false, "body_axes": true,
                    "principal_axes": true, "overlay": false}})"));
   engine::Simulation simulation = setup.simulation();
-  advance_to(simulation, 1.3);
+  frame_builder_advance_to(simulation, 1.3);
   FrameBuilder builder = setup.builder();
   builder.observe(simulation);
   const render::DrawList list = builder.build(simulation);
@@ -160,7 +161,7 @@ TEST(FrameBuilder, BodyPoseIsCentreOfMassAndBodyOrientation) {
           "velocity": [0.1, 0, 0], "angular_velocity": [0.05, 10, 0.05],
           "angular_velocity_frame": "body"}]})");
   engine::Simulation simulation = setup.simulation();
-  advance_to(simulation, 0.77);
+  frame_builder_advance_to(simulation, 0.77);
   FrameBuilder builder = setup.builder();
   builder.observe(simulation);
   const render::DrawList list = builder.build(simulation);
@@ -182,14 +183,14 @@ struct PoinsotRun {
 
 /// `width` x `height`: the frame the overlay is laid out for (the draw list is not rendered).
 PoinsotRun run_brick(const std::string& render, const std::string& integrator = "rk4",
-                     int width = kWidth, int height = kHeight) {
+                     int width = kFrameBuilderWidth, int height = kFrameBuilderHeight) {
   SceneSetup setup(brick_scene(render, integrator));
   setup.settings.width = width;
   setup.settings.height = height;
   PoinsotRun run{setup.simulation(), {}};
   FrameBuilder builder = setup.builder();
   for (int frame = 0; frame <= 180; ++frame) {
-    advance_to(run.simulation, frame / 30.0);
+    frame_builder_advance_to(run.simulation, frame / 30.0);
     builder.observe(run.simulation);
   }
   run.list = builder.build(run.simulation);
@@ -271,7 +272,7 @@ TEST(FrameBuilder, TrailKeepsTheLastSecondsOfABodyPoint) {
   FrameBuilder builder = setup.builder();
   std::vector<Eigen::Vector3d> expected;
   for (int frame = 0; frame <= 75; ++frame) {
-    advance_to(simulation, frame / 25.0);
+    frame_builder_advance_to(simulation, frame / 25.0);
     builder.observe(simulation);
     const engine::BodyState& state = simulation.states()[0];
     expected.push_back(state.position + engine::body_orientation(simulation.bodies()[0], state) *
@@ -333,7 +334,7 @@ TEST(FrameBuilder, AFrameRangeEqualsTheSameFramesOfAFullRender) {
   FrameBuilder full = setup.builder();
   std::vector<render::DrawList> full_frames;
   for (int frame = 0; frame < 10; ++frame) {
-    advance_to(full_run, frame / 3.0);
+    frame_builder_advance_to(full_run, frame / 3.0);
     full.observe(full_run);
     full_frames.push_back(full.build(full_run));
   }
@@ -342,7 +343,7 @@ TEST(FrameBuilder, AFrameRangeEqualsTheSameFramesOfAFullRender) {
   engine::Simulation range_run = setup.simulation();
   FrameBuilder range = setup.builder();
   for (int frame = 0; frame < 10; ++frame) {
-    advance_to(range_run, frame / 3.0);
+    frame_builder_advance_to(range_run, frame / 3.0);
     range.observe(range_run);
     if (frame >= 6)
       expect_same(range.build(range_run), full_frames[static_cast<std::size_t>(frame)]);
@@ -420,7 +421,7 @@ TEST(FrameBuilder, GroundLiesBelowAFallingBody) {
   double lowest = 1e9;
   float ground = 0.0f;
   for (int frame = 0; frame <= 45; ++frame) {
-    advance_to(simulation, frame / 30.0);
+    frame_builder_advance_to(simulation, frame / 30.0);
     builder.observe(simulation);
     const render::DrawList list = builder.build(simulation);
     EXPECT_TRUE(list.style.ground);
@@ -474,19 +475,19 @@ void expect_bodies_in_view(const std::string& text) {
   FrameBuilder builder = setup.builder();
   const double fps = 10.0;
   for (int frame = 0; frame / fps <= setup.scene.settings.duration; ++frame) {
-    advance_to(simulation, frame / fps);
+    frame_builder_advance_to(simulation, frame / fps);
     builder.observe(simulation);
     const render::Camera camera = builder.build(simulation).camera;
     for (std::size_t i = 0; i < radii.size(); ++i) {
       for (const Eigen::Vector3d& d : directions) {
         const Eigen::Vector3d world = simulation.states()[i].position + radii[i] * d;
-        const Eigen::Vector3f pixel =
-            render::project_to_pixels(camera, kWidth, kHeight, world.cast<float>());
+        const Eigen::Vector3f pixel = render::project_to_pixels(
+            camera, kFrameBuilderWidth, kFrameBuilderHeight, world.cast<float>());
         ASSERT_GT(pixel.z(), camera.near_plane) << "frame " << frame << " body " << i;
         EXPECT_GE(pixel.x(), 0.0f) << "frame " << frame << " body " << i;
-        EXPECT_LE(pixel.x(), kWidth) << "frame " << frame << " body " << i;
+        EXPECT_LE(pixel.x(), kFrameBuilderWidth) << "frame " << frame << " body " << i;
         EXPECT_GE(pixel.y(), 0.0f) << "frame " << frame << " body " << i;
-        EXPECT_LE(pixel.y(), kHeight) << "frame " << frame << " body " << i;
+        EXPECT_LE(pixel.y(), kFrameBuilderHeight) << "frame " << frame << " body " << i;
       }
     }
   }
@@ -537,7 +538,7 @@ TEST(FrameBuilder, CameraModesPlaceTheEye) {
         R"({"camera": {"mode": "orbit", "eye": [2, 0, 1], "target": [0, 0, 0], "orbit_period": 4}})"));
     engine::Simulation simulation = setup.simulation();
     FrameBuilder builder = setup.builder();
-    advance_to(simulation, 1.0);
+    frame_builder_advance_to(simulation, 1.0);
     builder.observe(simulation);
     const render::Camera camera = builder.build(simulation).camera;
     EXPECT_LT((camera.eye - Eigen::Vector3f(0, 2, 1)).norm(), 1e-5f);
@@ -552,7 +553,7 @@ TEST(FrameBuilder, CameraModesPlaceTheEye) {
     FrameBuilder builder = setup.builder();
     builder.observe(simulation);
     const render::Camera first = builder.build(simulation).camera;
-    advance_to(simulation, 1.5);
+    frame_builder_advance_to(simulation, 1.5);
     builder.observe(simulation);
     const render::Camera later = builder.build(simulation).camera;
     EXPECT_LT((later.target - simulation.states()[0].position.cast<float>()).norm(), 1e-5f);

@@ -13,19 +13,20 @@
 namespace tumble::app {
 namespace {
 
-constexpr int kWidth = 160;
-constexpr int kHeight = 120;
+constexpr int kFrameForcesWidth = 160;
+constexpr int kFrameForcesHeight = 120;
 
 render::Renderer& forces_renderer() {
-  return testing::frame_test_renderer(kWidth, kHeight);
+  return testing::frame_test_renderer(kFrameForcesWidth, kFrameForcesHeight);
 }
 
 /// A scene drawn at this file's frame size.
 struct ForcesScene : testing::FrameSceneSetup {
-  explicit ForcesScene(const std::string& text) : FrameSceneSetup(text, kWidth, kHeight) {}
+  explicit ForcesScene(const std::string& text)
+      : FrameSceneSetup(text, kFrameForcesWidth, kFrameForcesHeight) {}
 };
 
-void advance_to(engine::Simulation& simulation, double time) {
+void frame_forces_advance_to(engine::Simulation& simulation, double time) {
   const double dt = simulation.settings().dt;
   while (!simulation.finished() && simulation.time() + 0.5 * dt <= time) simulation.step();
 }
@@ -57,7 +58,7 @@ TEST(FrameForces, SpringCoilRunsFromAnchorToAttachmentAndStretches) {
   const Eigen::Vector3d anchor(0, 0, 0.5);
   double first_length = 0.0;
   for (const double time : {0.0, 0.7025}) {
-    advance_to(simulation, time);
+    frame_forces_advance_to(simulation, time);
     builder.observe(simulation);
     const render::DrawList list = builder.build(simulation);
     const auto found = coils(list);
@@ -94,16 +95,17 @@ TEST(FrameForces, SpringCoilIsInThePixelsAlongItsLength) {
   // Near each of five points spread along the coil, a pixel of the spring's red.
   for (int k = 0; k <= 4; ++k) {
     const Eigen::Vector3f world = points[(points.size() - 1) * static_cast<std::size_t>(k) / 4];
-    const Eigen::Vector3f pixel = render::project_to_pixels(list.camera, kWidth, kHeight, world);
+    const Eigen::Vector3f pixel =
+        render::project_to_pixels(list.camera, kFrameForcesWidth, kFrameForcesHeight, world);
     ASSERT_GT(pixel.x(), 0.0f);
-    ASSERT_LT(pixel.x(), kWidth);
+    ASSERT_LT(pixel.x(), kFrameForcesWidth);
     ASSERT_GT(pixel.y(), 0.0f);
-    ASSERT_LT(pixel.y(), kHeight);
+    ASSERT_LT(pixel.y(), kFrameForcesHeight);
     bool red = false;
     for (int dy = -2; dy <= 2; ++dy) {
       for (int dx = -2; dx <= 2; ++dx) {
-        const int x = std::clamp(static_cast<int>(pixel.x()) + dx, 0, kWidth - 1);
-        const int y = std::clamp(static_cast<int>(pixel.y()) + dy, 0, kHeight - 1);
+        const int x = std::clamp(static_cast<int>(pixel.x()) + dx, 0, kFrameForcesWidth - 1);
+        const int y = std::clamp(static_cast<int>(pixel.y()) + dy, 0, kFrameForcesHeight - 1);
         const std::uint8_t* rgba = image.pixel(x, y);
         red = red || (rgba[0] > 150 && rgba[1] < 0.5 * rgba[0] && rgba[2] < 0.5 * rgba[0]);
       }
@@ -120,7 +122,7 @@ TEST(FrameForces, PivotHasAMarkerAndAStemUpFromAHangingBody) {
     "render": {"show": {"overlay": false}}})");
   engine::Simulation simulation(setup.scene.bodies, setup.scene.initial, setup.scene.settings);
   FrameBuilder builder(setup.description, setup.scene, setup.settings, forces_renderer());
-  advance_to(simulation, 0.4);
+  frame_forces_advance_to(simulation, 0.4);
   builder.observe(simulation);
   const render::DrawList list = builder.build(simulation);
   const Eigen::Vector3f pivot(0, 0, 0.5);

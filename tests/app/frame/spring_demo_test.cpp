@@ -126,9 +126,9 @@ const render::Polyline* coil(const render::DrawList& list) {
 // the racket: near every sampled coil point outside the racket's bounding ball (which the
 // racket could hide) and off the arrows.
 TEST(SpringDemo, CoilIsDrawnBetweenAnchorAndRacket) {
-  constexpr int kWidth = 320;
-  constexpr int kHeight = 180;
-  const testing::FrameSceneSetup setup(demo_text(), kWidth, kHeight);
+  constexpr int kSpringDemoWidth = 320;
+  constexpr int kSpringDemoHeight = 180;
+  const testing::FrameSceneSetup setup(demo_text(), kSpringDemoWidth, kSpringDemoHeight);
   engine::Simulation simulation = setup.simulation();
   FrameBuilder builder = setup.builder();
   // The racket's bounding radius about its centre of mass (its mesh is in the body frame).
@@ -156,13 +156,14 @@ TEST(SpringDemo, CoilIsDrawnBetweenAnchorAndRacket) {
     for (std::size_t i = 0; i < found->points.size(); i += 8) {
       const Eigen::Vector3f world = found->points[i];
       if ((world.cast<double>() - centre).norm() < radius) continue;
-      const Eigen::Vector3f pixel = render::project_to_pixels(list.camera, kWidth, kHeight, world);
+      const Eigen::Vector3f pixel =
+          render::project_to_pixels(list.camera, kSpringDemoWidth, kSpringDemoHeight, world);
       ++sampled;
       bool here = false;
       for (int dy = -2; dy <= 2; ++dy) {
         for (int dx = -2; dx <= 2; ++dx) {
-          const int x = std::clamp(static_cast<int>(pixel.x()) + dx, 0, kWidth - 1);
-          const int y = std::clamp(static_cast<int>(pixel.y()) + dy, 0, kHeight - 1);
+          const int x = std::clamp(static_cast<int>(pixel.x()) + dx, 0, kSpringDemoWidth - 1);
+          const int y = std::clamp(static_cast<int>(pixel.y()) + dy, 0, kSpringDemoHeight - 1);
           const std::uint8_t* rgba = image.pixel(x, y);
           here = here || (rgba[0] > 150 && rgba[1] < 0.5 * rgba[0] && rgba[2] < 0.5 * rgba[0]);
         }

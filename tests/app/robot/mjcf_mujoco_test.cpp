@@ -25,9 +25,9 @@ using tumble::testing::BodyInertial;
 /// the body's axes agrees only to about 1e-6: MuJoCo keeps it as body_iquat and principal
 /// moments, and its eigen decomposition stops there (a wrong orientation would be off by
 /// tenths).
-constexpr double kTolerance = 1e-9;
+constexpr double kMjcfMujocoTolerance = 1e-9;
 constexpr double kMeshTolerance = 1e-7;
-constexpr double kTensorTolerance = 1e-5;
+constexpr double kMjcfMujocoTensorTolerance = 1e-5;
 
 /// Bodies of every kind of primitive geom, placed by pos with euler, quat, axisangle, xyaxes,
 /// zaxis and fromto; default classes (nested, by class and childclass); densities and masses
@@ -153,8 +153,8 @@ class MjcfAgainstMujoco : public ::testing::Test {
   }
 
   static void expect_close(const Agreement& agreement, const std::string& what,
-                           double tolerance = kTolerance) {
-    tumble::testing::expect_agreement(agreement, what, tolerance, kTensorTolerance);
+                           double tolerance = kMjcfMujocoTolerance) {
+    tumble::testing::expect_agreement(agreement, what, tolerance, kMjcfMujocoTensorTolerance);
   }
 
   std::filesystem::path folder_;

@@ -23,8 +23,8 @@ using tumble::testing::BodyInertial;
 // MuJoCo keeps an inertia as principal moments and a rotation from its own eigen
 // decomposition (good to ~1e-7, mjcf_mujoco_test.cpp measures it): the tensor it implies is
 // compared more loosely than mass, centre of mass and moments.
-constexpr double kTolerance = 1e-9;
-constexpr double kTensorTolerance = 1e-5;
+constexpr double kUrdfMujocoTolerance = 1e-9;
+constexpr double kUrdfMujocoTensorTolerance = 1e-5;
 
 // Three links joined by revolute joints (MuJoCo fuses links joined by fixed ones, and the root
 // link, empty here, becomes its world body): primitives
@@ -130,7 +130,8 @@ class UrdfAgainstMujoco : public ::testing::Test {
   }
 
   static void expect_close(const Agreement& agreement, const std::string& what) {
-    tumble::testing::expect_agreement(agreement, what, kTolerance, kTensorTolerance);
+    tumble::testing::expect_agreement(agreement, what, kUrdfMujocoTolerance,
+                                      kUrdfMujocoTensorTolerance);
   }
 
   std::filesystem::path folder_;

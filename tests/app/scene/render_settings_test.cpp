@@ -22,7 +22,7 @@ RenderSettings parse(const std::string& text) {
 }
 
 /// The message of the InputError that parsing `text` throws (a failure if it does not).
-std::string error_of(const std::string& text) {
+std::string render_settings_error_of(const std::string& text) {
   return testing::input_error_of([&] { parse(text); }, text);
 }
 
@@ -111,7 +111,7 @@ struct BadCase {
 class RenderSettingsError : public ::testing::TestWithParam<BadCase> {};
 
 TEST_P(RenderSettingsError, NamesThePathAndWhatWasExpected) {
-  const std::string message = error_of(GetParam().json);
+  const std::string message = render_settings_error_of(GetParam().json);
   EXPECT_THAT(message, HasSubstr(GetParam().message)) << GetParam().json;
   EXPECT_THAT(message, HasSubstr("scene.json: render")) << GetParam().json;
 }

@@ -26,7 +26,7 @@ using nlohmann::json;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 
-const std::filesystem::path kFile = "scenes/flip.json";
+const std::filesystem::path kSceneFile = "scenes/flip.json";
 
 /// A valid one-body scene to break in one place.
 json base_scene() {
@@ -35,9 +35,9 @@ json base_scene() {
 
 /// The message parse_scene throws for `text` (empty, with a test failure, when it accepts it).
 std::string error_of_text(const std::string& text) {
-  return testing::input_error_of([&] { parse_scene(text, kFile); }, text);
+  return testing::input_error_of([&] { parse_scene(text, kSceneFile); }, text);
 }
-std::string error_of(const json& scene) {
+std::string scene_error_of(const json& scene) {
   return error_of_text(scene.dump());
 }
 
@@ -78,7 +78,7 @@ int count_terms(const engine::BodyModel& body) {
 // Parsing: accepted forms and defaults.
 
 TEST(SceneParse, DefaultsOfAMinimalScene) {
-  const SceneDescription scene = parse_scene(base_scene().dump(), kFile);
+  const SceneDescription scene = parse_scene(base_scene().dump(), kSceneFile);
   EXPECT_EQ(scene.name, "flip");  // the file's stem
   EXPECT_EQ(scene.integrator, "rk4");
   EXPECT_EQ(scene.duration, 1.0);
@@ -111,7 +111,7 @@ TEST(SceneParse, TheIssueExampleWithCommentsParses) {
       "torque": [0, 0, 0], "torque_frame": "world",
       "spring": {"anchor": [0,0,1], "attach": [0,0,0.1], "stiffness": 1e4, "damping": 0}
     }] })";
-  const SceneDescription scene = parse_scene(text, kFile);
+  const SceneDescription scene = parse_scene(text, kSceneFile);
   EXPECT_EQ(scene.name, "T-handle flip");
   EXPECT_EQ(*scene.gravity, Eigen::Vector3d(0, 0, -9.81));
   const BodyDescription& body = scene.bodies.at(0);
@@ -124,7 +124,7 @@ TEST(SceneParse, TheIssueExampleWithCommentsParses) {
 }
 
 TEST(SceneParse, AnyNonZeroQuaternionIsNormalised) {
-  const auto scene = parse_scene(with_body("orientation", {2, 0, 0, 2}).dump(), kFile);
+  const auto scene = parse_scene(with_body("orientation", {2, 0, 0, 2}).dump(), kSceneFile);
   const Eigen::Quaterniond& q = scene.bodies[0].orientation;
   EXPECT_NEAR(q.norm(), 1.0, 1e-15);
   EXPECT_NEAR(q.w(), std::sqrt(0.5), 1e-15);
@@ -134,7 +134,7 @@ TEST(SceneParse, AnyNonZeroQuaternionIsNormalised) {
 TEST(SceneParse, UnnamedBodiesGetTheirIndex) {
   json scene = base_scene();
   scene["bodies"][0].erase("name");
-  EXPECT_EQ(parse_scene(scene.dump(), kFile).bodies[0].name, "body0");
+  EXPECT_EQ(parse_scene(scene.dump(), kSceneFile).bodies[0].name, "body0");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -160,129 +160,134 @@ TEST(SceneErrors, TopLevelMustBeAnObject) {
 TEST(SceneErrors, UnknownKeysAreNamed) {
   json scene = base_scene();
   scene["gravitty"] = {0, 0, -9.81};
-  EXPECT_THAT(error_of(scene),
+  EXPECT_THAT(scene_error_of(scene),
               AllOf(HasSubstr("scenes/flip.json: gravitty: unknown key"), HasSubstr("gravity")));
-  EXPECT_THAT(error_of(with_body("colour", "red")),
+  EXPECT_THAT(scene_error_of(with_body("colour", "red")),
               AllOf(HasSubstr("bodies[0].colour: unknown key; expected one of: name, mesh")));
   json spring = with_body(
       "spring", {{"anchor", {0, 0, 1}}, {"attach", {0, 0, 0}}, {"stiffness", 1}, {"k", 2}});
-  EXPECT_THAT(error_of(spring), HasSubstr("bodies[0].spring.k: unknown key"));
-  EXPECT_THAT(error_of(with_body("inertia", {{"diagonal", {1, 1, 1}}})),
+  EXPECT_THAT(scene_error_of(spring), HasSubstr("bodies[0].spring.k: unknown key"));
+  EXPECT_THAT(scene_error_of(with_body("inertia", {{"diagonal", {1, 1, 1}}})),
               HasSubstr("bodies[0].inertia.diagonal: unknown key"));
 }
 
 TEST(SceneErrors, WrongTypesSayWhatWasExpected) {
-  EXPECT_THAT(error_of(with_body("angular_velocity", "fast")),
+  EXPECT_THAT(scene_error_of(with_body("angular_velocity", "fast")),
               HasSubstr("scenes/flip.json: bodies[0].angular_velocity: expected an array of 3 "
                         "finite numbers [x, y, z], got the string \"fast\""));
-  EXPECT_THAT(error_of(with_body("angular_velocity", {1, 2})),
+  EXPECT_THAT(scene_error_of(with_body("angular_velocity", {1, 2})),
               HasSubstr("bodies[0].angular_velocity: expected an array of 3 finite numbers"));
-  EXPECT_THAT(error_of(with_body("angular_velocity", {1, true, 2})),
+  EXPECT_THAT(scene_error_of(with_body("angular_velocity", {1, true, 2})),
               HasSubstr("bodies[0].angular_velocity[1]: expected a number, got true"));
-  EXPECT_THAT(error_of(with_body("mass", "2 kg")),
+  EXPECT_THAT(scene_error_of(with_body("mass", "2 kg")),
               HasSubstr("bodies[0].mass: expected a number, got the string \"2 kg\""));
-  EXPECT_THAT(error_of(with_body("name", 7)), HasSubstr("bodies[0].name: expected a string"));
+  EXPECT_THAT(scene_error_of(with_body("name", 7)), HasSubstr("bodies[0].name: expected a string"));
   json mesh = with_body("mesh", json::array());
   mesh["bodies"][0].erase("inertia");
-  EXPECT_THAT(error_of(mesh), HasSubstr("bodies[0].mesh: expected a string"));
+  EXPECT_THAT(scene_error_of(mesh), HasSubstr("bodies[0].mesh: expected a string"));
   json scene = base_scene();
   scene["bodies"][0] = 5;
-  EXPECT_THAT(error_of(scene), HasSubstr("bodies[0]: expected an object, got 5"));
+  EXPECT_THAT(scene_error_of(scene), HasSubstr("bodies[0]: expected an object, got 5"));
 }
 
 TEST(SceneErrors, MissingRequiredFields) {
   for (const char* key : {"duration", "dt", "bodies"}) {
     json scene = base_scene();
     scene.erase(key);
-    EXPECT_THAT(error_of(scene), HasSubstr(std::string("scenes/flip.json: ") + key + ": missing"));
+    EXPECT_THAT(scene_error_of(scene),
+                HasSubstr(std::string("scenes/flip.json: ") + key + ": missing"));
   }
   json no_mass = base_scene();
   no_mass["bodies"][0].erase("mass");
-  EXPECT_THAT(error_of(no_mass), HasSubstr("bodies[0]: missing \"mass\" (kg)"));
-  EXPECT_THAT(error_of(with_body("spring", {{"attach", {0, 0, 0}}, {"stiffness", 1}})),
+  EXPECT_THAT(scene_error_of(no_mass), HasSubstr("bodies[0]: missing \"mass\" (kg)"));
+  EXPECT_THAT(scene_error_of(with_body("spring", {{"attach", {0, 0, 0}}, {"stiffness", 1}})),
               HasSubstr("bodies[0].spring.anchor: missing"));
-  EXPECT_THAT(error_of(with_body("spring", {{"anchor", {0, 0, 0}}, {"attach", {0, 0, 0}}})),
+  EXPECT_THAT(scene_error_of(with_body("spring", {{"anchor", {0, 0, 0}}, {"attach", {0, 0, 0}}})),
               HasSubstr("bodies[0].spring.stiffness: missing"));
 }
 
 TEST(SceneErrors, DurationAndStep) {
   json scene = base_scene();
   scene["duration"] = 0;
-  EXPECT_THAT(error_of(scene), HasSubstr("duration: expected a positive number, got 0"));
+  EXPECT_THAT(scene_error_of(scene), HasSubstr("duration: expected a positive number, got 0"));
   scene = base_scene();
   scene["dt"] = -0.01;
-  EXPECT_THAT(error_of(scene), HasSubstr("dt: expected a positive number, got -0.01"));
+  EXPECT_THAT(scene_error_of(scene), HasSubstr("dt: expected a positive number, got -0.01"));
   scene = base_scene();
   scene["dt"] = 2.0;
-  EXPECT_THAT(error_of(scene),
+  EXPECT_THAT(scene_error_of(scene),
               HasSubstr("dt: expected a step no longer than the duration (1 s), got 2"));
   scene = base_scene();
   scene["dt"] = 1e-300;
-  EXPECT_THAT(error_of(scene), HasSubstr("dt: expected at most 1e12 steps, but a duration of 1 s "
-                                         "takes 1e+300 steps of 1e-300 s"));
+  EXPECT_THAT(scene_error_of(scene),
+              HasSubstr("dt: expected at most 1e12 steps, but a duration of 1 s "
+                        "takes 1e+300 steps of 1e-300 s"));
   scene = base_scene();
   scene["tolerance"] = 0;
-  EXPECT_THAT(error_of(scene), HasSubstr("tolerance: expected a positive number"));
+  EXPECT_THAT(scene_error_of(scene), HasSubstr("tolerance: expected a positive number"));
 }
 
 TEST(SceneErrors, UnknownIntegratorListsTheValidNames) {
   json scene = base_scene();
   scene["integrator"] = "leapfrog";
-  EXPECT_THAT(error_of(scene), AllOf(HasSubstr("integrator: unknown integrator \"leapfrog\"; "
-                                               "expected one of: "),
-                                     HasSubstr("rk4")));
+  EXPECT_THAT(scene_error_of(scene), AllOf(HasSubstr("integrator: unknown integrator \"leapfrog\"; "
+                                                     "expected one of: "),
+                                           HasSubstr("rk4")));
 }
 
 TEST(SceneErrors, BodiesMustBeANonEmptyArray) {
   json scene = base_scene();
   scene["bodies"] = json::array();
-  EXPECT_THAT(error_of(scene),
+  EXPECT_THAT(scene_error_of(scene),
               HasSubstr("bodies: expected a non-empty array of bodies, got an array of 0"));
   scene["bodies"] = json::object();
-  EXPECT_THAT(error_of(scene),
+  EXPECT_THAT(scene_error_of(scene),
               HasSubstr("bodies: expected a non-empty array of bodies, got an object"));
 }
 
 TEST(SceneErrors, ExactlyOneOfMeshOrInertia) {
-  EXPECT_THAT(error_of(with_body("mesh", "box.obj")),
+  EXPECT_THAT(scene_error_of(with_body("mesh", "box.obj")),
               HasSubstr("bodies[0]: expected exactly one of \"mesh\", \"shape\" or \"inertia\", "
                         "got 2 of them"));
   json scene = base_scene();
   scene["bodies"][0].erase("inertia");
-  EXPECT_THAT(error_of(scene), AllOf(HasSubstr("bodies[0]: expected exactly one of \"mesh\" (a "
-                                               "file), \"shape\" ({\"box\": [x, y, z]}"),
-                                     HasSubstr("got none")));
-  EXPECT_THAT(error_of(with_body("inertia", {{"principal", {1, 2, 3}},
-                                             {"tensor", {{1, 0, 0}, {0, 2, 0}, {0, 0, 3}}}})),
+  EXPECT_THAT(scene_error_of(scene),
+              AllOf(HasSubstr("bodies[0]: expected exactly one of \"mesh\" (a "
+                              "file), \"shape\" ({\"box\": [x, y, z]}"),
+                    HasSubstr("got none")));
+  EXPECT_THAT(scene_error_of(with_body("inertia", {{"principal", {1, 2, 3}},
+                                                   {"tensor", {{1, 0, 0}, {0, 2, 0}, {0, 0, 3}}}})),
               HasSubstr("bodies[0].inertia: expected exactly one of \"principal\""));
 }
 
 TEST(SceneErrors, MassDensityAndScale) {
-  EXPECT_THAT(error_of(with_body("density", 1000)),
+  EXPECT_THAT(scene_error_of(with_body("density", 1000)),
               HasSubstr("bodies[0].density: \"mass\" and \"density\" exclude each other"));
   json scene = base_scene();
   scene["bodies"][0].erase("mass");
   scene["bodies"][0]["density"] = 1000;
-  EXPECT_THAT(error_of(scene), HasSubstr("bodies[0].density: \"density\" needs a mesh"));
-  EXPECT_THAT(error_of(with_body("mass", 0)),
+  EXPECT_THAT(scene_error_of(scene), HasSubstr("bodies[0].density: \"density\" needs a mesh"));
+  EXPECT_THAT(scene_error_of(with_body("mass", 0)),
               HasSubstr("bodies[0].mass: expected a positive number, got 0"));
-  EXPECT_THAT(error_of(with_body("scale", 2)),
+  EXPECT_THAT(scene_error_of(with_body("scale", 2)),
               HasSubstr("bodies[0].scale: \"scale\" applies to a mesh only"));
   json mesh = base_scene();
   mesh["bodies"][0].erase("inertia");
   mesh["bodies"][0]["mesh"] = "box.obj";
   mesh["bodies"][0]["scale"] = -1;
-  EXPECT_THAT(error_of(mesh), HasSubstr("bodies[0].scale: expected a positive number, got -1"));
+  EXPECT_THAT(scene_error_of(mesh),
+              HasSubstr("bodies[0].scale: expected a positive number, got -1"));
   mesh["bodies"][0].erase("scale");
   mesh["bodies"][0]["allow_overlap"] = 1;
-  EXPECT_THAT(error_of(mesh), HasSubstr("bodies[0].allow_overlap: expected true or false, got 1"));
+  EXPECT_THAT(scene_error_of(mesh),
+              HasSubstr("bodies[0].allow_overlap: expected true or false, got 1"));
   mesh["bodies"][0]["allow_overlap"] = true;
-  EXPECT_TRUE(parse_scene(mesh.dump(), kFile).bodies[0].allow_overlap);
+  EXPECT_TRUE(parse_scene(mesh.dump(), kSceneFile).bodies[0].allow_overlap);
   mesh["bodies"][0].erase("allow_overlap");
-  EXPECT_FALSE(parse_scene(mesh.dump(), kFile).bodies[0].allow_overlap);
+  EXPECT_FALSE(parse_scene(mesh.dump(), kSceneFile).bodies[0].allow_overlap);
   mesh["bodies"][0].erase("mass");
-  EXPECT_THAT(error_of(mesh), HasSubstr("bodies[0]: missing \"mass\" (kg) or \"density\""));
-  EXPECT_THAT(error_of(with_body("allow_overlap", true)),
+  EXPECT_THAT(scene_error_of(mesh), HasSubstr("bodies[0]: missing \"mass\" (kg) or \"density\""));
+  EXPECT_THAT(scene_error_of(with_body("allow_overlap", true)),
               HasSubstr("bodies[0].allow_overlap: \"allow_overlap\" applies to a mesh only"));
 }
 
@@ -305,54 +310,57 @@ TEST(SceneErrors, HugeNumbersReadAsInfinityAreRefused) {
 }
 
 TEST(SceneErrors, PrincipalMomentsMustBeARigidBody) {
-  EXPECT_THAT(error_of(with_body("inertia", {{"principal", {1, -2, 3}}})),
+  EXPECT_THAT(scene_error_of(with_body("inertia", {{"principal", {1, -2, 3}}})),
               AllOf(HasSubstr("bodies[0].inertia.principal: "), HasSubstr("positive")));
-  EXPECT_THAT(error_of(with_body("inertia", {{"principal", {1, 1, 3}}})),
+  EXPECT_THAT(scene_error_of(with_body("inertia", {{"principal", {1, 1, 3}}})),
               AllOf(HasSubstr("bodies[0].inertia.principal: "), HasSubstr("triangle inequality")));
 }
 
 TEST(SceneErrors, TensorMustBeSymmetricPositiveDefinite) {
-  EXPECT_THAT(error_of(with_body("inertia", {{"tensor", {{2, 0.5, 0}, {0, 2, 0}, {0, 0, 3}}}})),
-              HasSubstr("bodies[0].inertia.tensor: expected a symmetric tensor, but [0][1] = 0.5 "
-                        "differs from [1][0] = 0"));
-  EXPECT_THAT(error_of(with_body("inertia", {{"tensor", {{1, 2, 0}, {2, 1, 0}, {0, 0, 1}}}})),
+  EXPECT_THAT(
+      scene_error_of(with_body("inertia", {{"tensor", {{2, 0.5, 0}, {0, 2, 0}, {0, 0, 3}}}})),
+      HasSubstr("bodies[0].inertia.tensor: expected a symmetric tensor, but [0][1] = 0.5 "
+                "differs from [1][0] = 0"));
+  EXPECT_THAT(scene_error_of(with_body("inertia", {{"tensor", {{1, 2, 0}, {2, 1, 0}, {0, 0, 1}}}})),
               HasSubstr("bodies[0].inertia.tensor: expected a positive definite tensor; its "
                         "principal moments are [-"));
-  EXPECT_THAT(error_of(with_body("inertia", {{"tensor", {{1, 0, 0}, {0, 1, 0}, {0, 0, 5}}}})),
+  EXPECT_THAT(scene_error_of(with_body("inertia", {{"tensor", {{1, 0, 0}, {0, 1, 0}, {0, 0, 5}}}})),
               AllOf(HasSubstr("bodies[0].inertia.tensor: "), HasSubstr("triangle inequality")));
-  EXPECT_THAT(error_of(with_body("inertia", {{"tensor", {{1, 0, 0}, {0, 1, 0}}}})),
+  EXPECT_THAT(scene_error_of(with_body("inertia", {{"tensor", {{1, 0, 0}, {0, 1, 0}}}})),
               HasSubstr("bodies[0].inertia.tensor: expected a 3 x 3 array"));
-  EXPECT_THAT(error_of(with_body("inertia", {{"tensor", {{1, 0, 0}, {0, 1}, {0, 0, 1}}}})),
+  EXPECT_THAT(scene_error_of(with_body("inertia", {{"tensor", {{1, 0, 0}, {0, 1}, {0, 0, 1}}}})),
               HasSubstr("bodies[0].inertia.tensor[1]: expected a row of 3 finite numbers"));
 }
 
 TEST(SceneErrors, Quaternions) {
-  EXPECT_THAT(error_of(with_body("orientation", {0, 0, 0, 0})),
+  EXPECT_THAT(scene_error_of(with_body("orientation", {0, 0, 0, 0})),
               HasSubstr("bodies[0].orientation: expected a non-zero quaternion [w, x, y, z]"));
-  EXPECT_THAT(error_of(with_body("orientation", {1, 0, 0})),
+  EXPECT_THAT(scene_error_of(with_body("orientation", {1, 0, 0})),
               HasSubstr("bodies[0].orientation: expected a quaternion [w, x, y, z] of 4"));
 }
 
 TEST(SceneErrors, Frames) {
-  EXPECT_THAT(error_of(with_body("angular_velocity_frame", "sideways")),
+  EXPECT_THAT(scene_error_of(with_body("angular_velocity_frame", "sideways")),
               HasSubstr("bodies[0].angular_velocity_frame: given without \"angular_velocity\""));
   json scene = with_body("angular_velocity", {0, 0, 1});
   scene["bodies"][0]["angular_velocity_frame"] = "sideways";
-  EXPECT_THAT(error_of(scene), HasSubstr("bodies[0].angular_velocity_frame: expected \"world\" or "
-                                         "\"body\", got \"sideways\""));
+  EXPECT_THAT(scene_error_of(scene),
+              HasSubstr("bodies[0].angular_velocity_frame: expected \"world\" or "
+                        "\"body\", got \"sideways\""));
   scene = with_body("torque", {0, 0, 1});
   scene["bodies"][0]["torque_frame"] = "Body";
-  EXPECT_THAT(error_of(scene), HasSubstr("bodies[0].torque_frame: expected \"world\" or \"body\""));
-  EXPECT_THAT(error_of(with_body("torque_frame", "body")),
+  EXPECT_THAT(scene_error_of(scene),
+              HasSubstr("bodies[0].torque_frame: expected \"world\" or \"body\""));
+  EXPECT_THAT(scene_error_of(with_body("torque_frame", "body")),
               HasSubstr("bodies[0].torque_frame: given without \"torque\""));
 }
 
 TEST(SceneErrors, SpringConstants) {
-  EXPECT_THAT(error_of(with_body(
+  EXPECT_THAT(scene_error_of(with_body(
                   "spring", {{"anchor", {0, 0, 1}}, {"attach", {0, 0, 0}}, {"stiffness", -1}})),
               HasSubstr("bodies[0].spring.stiffness: expected a number >= 0, got -1"));
   EXPECT_THAT(
-      error_of(with_body(
+      scene_error_of(with_body(
           "spring",
           {{"anchor", {0, 0, 1}}, {"attach", {0, 0, 0}}, {"stiffness", 1}, {"damping", -0.5}})),
       HasSubstr("bodies[0].spring.damping: expected a number >= 0, got -0.5"));
@@ -361,18 +369,19 @@ TEST(SceneErrors, SpringConstants) {
 TEST(SceneErrors, PivotedBodiesTakeNoVelocity) {
   json scene = with_body("pivot", {0, 0, -0.4});
   scene["bodies"][0]["velocity"] = {1, 0, 0};
-  EXPECT_THAT(error_of(scene),
+  EXPECT_THAT(scene_error_of(scene),
               HasSubstr("bodies[0].velocity: a pivoted body takes no \"velocity\""));
 }
 
 TEST(SceneErrors, BodyNamesAreUniqueAndPrintable) {
   json scene = base_scene();
   scene["bodies"].push_back(scene["bodies"][0]);
-  EXPECT_THAT(error_of(scene), HasSubstr("bodies[1].name: the name \"brick\" is already taken by "
-                                         "bodies[0]"));
-  EXPECT_THAT(error_of(with_body("name", "")),
+  EXPECT_THAT(scene_error_of(scene),
+              HasSubstr("bodies[1].name: the name \"brick\" is already taken by "
+                        "bodies[0]"));
+  EXPECT_THAT(scene_error_of(with_body("name", "")),
               HasSubstr("bodies[0].name: expected a non-empty name"));
-  EXPECT_THAT(error_of(with_body("name", "a\nb")),
+  EXPECT_THAT(scene_error_of(with_body("name", "a\nb")),
               HasSubstr("bodies[0].name: expected a name without control characters"));
 }
 

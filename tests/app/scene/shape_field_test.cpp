@@ -23,7 +23,7 @@ using nlohmann::json;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 
-const std::filesystem::path kFile = "scenes/shapes.json";
+const std::filesystem::path kShapeFieldFile = "scenes/shapes.json";
 
 /// A one-body scene whose body has `shape` and the given matter instead of an inertia.
 json shape_scene(const json& shape, const std::string& matter = "mass", double amount = 3.0) {
@@ -38,10 +38,10 @@ json shape_scene(const json& shape, const std::string& matter = "mass", double a
 }
 
 SceneDescription parse(const json& scene) {
-  return parse_scene(scene.dump(), kFile);
+  return parse_scene(scene.dump(), kShapeFieldFile);
 }
 
-std::string error_of(const json& scene) {
+std::string shape_field_error_of(const json& scene) {
   return testing::input_error_of([&] { parse(scene); }, scene.dump());
 }
 
@@ -75,7 +75,7 @@ TEST(SceneShapes, EveryKindParses) {
 
 TEST(SceneShapes, MistakesNameTheFileAndTheJsonPath) {
   const auto expect_error = [](const json& shape, const std::string& message) {
-    EXPECT_THAT(error_of(shape_scene(shape)),
+    EXPECT_THAT(shape_field_error_of(shape_scene(shape)),
                 AllOf(HasSubstr("scenes/shapes.json: "), HasSubstr(message)))
         << shape.dump();
   };
@@ -108,23 +108,27 @@ TEST(SceneShapes, MistakesNameTheFileAndTheJsonPath) {
 TEST(SceneShapes, TheBodyTakesOneOfMeshShapeOrInertiaAndItsMatter) {
   json scene = shape_scene({{"box", {1, 1, 1}}});
   scene["bodies"][0]["inertia"] = {{"principal", {1, 1, 1}}};
-  EXPECT_THAT(error_of(scene), HasSubstr("bodies[0]: expected exactly one of \"mesh\", \"shape\" "
-                                         "or \"inertia\", got 2 of them"));
+  EXPECT_THAT(shape_field_error_of(scene),
+              HasSubstr("bodies[0]: expected exactly one of \"mesh\", \"shape\" "
+                        "or \"inertia\", got 2 of them"));
   scene = shape_scene({{"box", {1, 1, 1}}});
   scene["bodies"][0]["mesh"] = "box.obj";
-  EXPECT_THAT(error_of(scene), HasSubstr("got 2 of them"));
+  EXPECT_THAT(shape_field_error_of(scene), HasSubstr("got 2 of them"));
   scene = shape_scene({{"box", {1, 1, 1}}});
   scene["bodies"][0].erase("mass");
-  EXPECT_THAT(error_of(scene), HasSubstr("bodies[0]: missing \"mass\" (kg) or \"density\" "
-                                         "(kg/m^3) for the shape"));
+  EXPECT_THAT(shape_field_error_of(scene),
+              HasSubstr("bodies[0]: missing \"mass\" (kg) or \"density\" "
+                        "(kg/m^3) for the shape"));
   scene = shape_scene({{"box", {1, 1, 1}}});
   scene["bodies"][0]["density"] = 1000;
-  EXPECT_THAT(error_of(scene), HasSubstr("bodies[0].density: \"mass\" and \"density\" exclude"));
-  EXPECT_THAT(error_of(shape_scene({{"box", {1, 1, 1}}}, "density", -5)),
+  EXPECT_THAT(shape_field_error_of(scene),
+              HasSubstr("bodies[0].density: \"mass\" and \"density\" exclude"));
+  EXPECT_THAT(shape_field_error_of(shape_scene({{"box", {1, 1, 1}}}, "density", -5)),
               HasSubstr("bodies[0].density: expected a positive number, got -5"));
   scene = shape_scene({{"box", {1, 1, 1}}});
   scene["bodies"][0]["scale"] = 2;
-  EXPECT_THAT(error_of(scene), HasSubstr("bodies[0].scale: \"scale\" applies to a mesh only"));
+  EXPECT_THAT(shape_field_error_of(scene),
+              HasSubstr("bodies[0].scale: \"scale\" applies to a mesh only"));
 }
 
 TEST(SceneShapes, ABodyCompilesToTheClosedFormAndKeepsItsTessellation) {

@@ -19,7 +19,8 @@ using nlohmann::json;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
-std::string error_of(const std::string& text, const std::string& source = "scene.json") {
+std::string strict_json_error_of(const std::string& text,
+                                 const std::string& source = "scene.json") {
   return testing::input_error_of([&] { parse_strict_json(text, source); }, "'" + text + "'");
 }
 
@@ -65,7 +66,7 @@ TEST(StrictJson, CommentMarkersInsideStringsAreText) {
 }
 
 TEST(StrictJson, DuplicateKeyAtTheTopLevelNamesTheKey) {
-  EXPECT_EQ(error_of(R"({"dt": 0.01, "dt": 0.02})"),
+  EXPECT_EQ(strict_json_error_of(R"({"dt": 0.01, "dt": 0.02})"),
             "scene.json: dt: duplicate key (each key may appear once)");
 }
 
@@ -77,7 +78,7 @@ TEST(StrictJson, DuplicateKeyDeepInsideNamesItsFullPath) {
   ]
 })";
   EXPECT_EQ(
-      error_of(text, "deep.json"),
+      strict_json_error_of(text, "deep.json"),
       "deep.json: bodies[1].inertia.principal[2].k: duplicate key (each key may appear once)");
 }
 
@@ -96,25 +97,25 @@ TEST(StrictJson, KeysDifferingOnlyInCaseAreDistinct) {
 TEST(StrictJson, NumberBeyondADoublePointsAtItsStartWithLineColumnAndPath) {
   // Line 3 is `    "b": [1, 1e999]`: the number starts at column 14.
   const std::string text = "{\n  \"a\": {\n    \"b\": [1, 1e999]\n  }\n}\n";
-  EXPECT_EQ(error_of(text),
+  EXPECT_EQ(strict_json_error_of(text),
             "scene.json:3:14: a.b[1]: expected a finite number, got 1e999 (beyond the range of a "
             "double)");
 }
 
 TEST(StrictJson, NegativeOverflowAndOverflowAsAMemberValue) {
-  EXPECT_EQ(error_of(R"({"mass": -1e400})", "m.json"),
+  EXPECT_EQ(strict_json_error_of(R"({"mass": -1e400})", "m.json"),
             "m.json:1:10: mass: expected a finite number, got -1e400 (beyond the range of a "
             "double)");
 }
 
 TEST(StrictJson, OverflowAtTheTopLevelHasNoPath) {
-  EXPECT_EQ(error_of("1e999", "top.json"),
+  EXPECT_EQ(strict_json_error_of("1e999", "top.json"),
             "top.json:1:1: expected a finite number, got 1e999 (beyond the range of a double)");
 }
 
 TEST(StrictJson, AnIntegerWithMoreDigitsThanADoubleHoldsIsAnError) {
   const std::string huge = "1" + std::string(400, '0');
-  const std::string message = error_of("[" + huge + "]");
+  const std::string message = strict_json_error_of("[" + huge + "]");
   EXPECT_THAT(message, StartsWith("scene.json:1:2: [0]: expected a finite number, got " + huge));
 }
 
@@ -126,28 +127,29 @@ TEST(StrictJson, LargestAndSmallestDoublesAreAccepted) {
 }
 
 TEST(StrictJson, SyntaxErrorNamesSourceLineAndColumn) {
-  const std::string message = error_of("{\n  \"a\": 1\n  \"b\": 2\n}", "s.json");
+  const std::string message = strict_json_error_of("{\n  \"a\": 1\n  \"b\": 2\n}", "s.json");
   EXPECT_THAT(message, StartsWith("s.json:3:"));
   EXPECT_THAT(message, HasSubstr(": malformed JSON: "));
   EXPECT_THAT(message, ::testing::Not(HasSubstr("[json.exception")));
 }
 
 TEST(StrictJson, TrailingCommaIsMalformed) {
-  const std::string message = error_of(R"({"a": 1,})", "t.json");
+  const std::string message = strict_json_error_of(R"({"a": 1,})", "t.json");
   EXPECT_THAT(message, StartsWith("t.json:1:"));
   EXPECT_THAT(message, HasSubstr("malformed JSON"));
 }
 
 TEST(StrictJson, EmptyTextTrailingGarbageAndUnclosedCommentsAreMalformed) {
-  EXPECT_THAT(error_of("", "e.json"), StartsWith("e.json:1:1: malformed JSON"));
-  EXPECT_THAT(error_of("{} x", "g.json"), StartsWith("g.json:1:"));
-  EXPECT_THAT(error_of("{} x", "g.json"), HasSubstr("malformed JSON"));
-  EXPECT_THAT(error_of("{\"a\": 1 /* never closed", "c.json"), HasSubstr("malformed JSON"));
-  EXPECT_THAT(error_of("[1, 2", "u.json"), HasSubstr("malformed JSON"));
+  EXPECT_THAT(strict_json_error_of("", "e.json"), StartsWith("e.json:1:1: malformed JSON"));
+  EXPECT_THAT(strict_json_error_of("{} x", "g.json"), StartsWith("g.json:1:"));
+  EXPECT_THAT(strict_json_error_of("{} x", "g.json"), HasSubstr("malformed JSON"));
+  EXPECT_THAT(strict_json_error_of("{\"a\": 1 /* never closed", "c.json"),
+              HasSubstr("malformed JSON"));
+  EXPECT_THAT(strict_json_error_of("[1, 2", "u.json"), HasSubstr("malformed JSON"));
 }
 
 TEST(StrictJson, SyntaxErrorOnALaterLineCountsEveryNewline) {
-  const std::string message = error_of("[\n1,\n2,\n\n  ?]", "n.json");
+  const std::string message = strict_json_error_of("[\n1,\n2,\n\n  ?]", "n.json");
   EXPECT_THAT(message, StartsWith("n.json:5:"));
 }
 
@@ -163,7 +165,7 @@ TEST(StrictJson, NestingDeeperThanTheLimitIsRefusedFastWithBoundedMemory) {
   const std::string text = std::string(40000, '[') + std::string(40000, ']');
   const long before = peak_memory_bytes();
   const auto start = std::chrono::steady_clock::now();
-  const std::string message = error_of(text);
+  const std::string message = strict_json_error_of(text);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_LT(peak_memory_bytes() - before, 64L << 20);
@@ -177,7 +179,7 @@ TEST(StrictJson, NestingDeeperThanTheLimitIsRefusedFastWithBoundedMemory) {
 TEST(StrictJson, TheDepthLimitCountsObjectsAndNamesTheKeys) {
   std::string text;
   for (int i = 0; i < 300; ++i) text += R"({"a": )";
-  const std::string message = error_of(text);
+  const std::string message = strict_json_error_of(text);
   std::string path = "a";
   for (int i = 1; i < 256; ++i) path += ".a";
   EXPECT_EQ(message,

@@ -8,13 +8,13 @@
 namespace tumble::app::viewer {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kCameraDeg = std::numbers::pi / 180.0;
 
 /// target + distance * (cos el cos az, cos el sin az, sin el), the orbit's closed form.
 Eigen::Vector3d sphere_point(const Eigen::Vector3d& target, double distance, double az_deg,
                              double el_deg) {
-  const double az = az_deg * kDeg;
-  const double el = el_deg * kDeg;
+  const double az = az_deg * kCameraDeg;
+  const double el = el_deg * kCameraDeg;
   return target + distance * Eigen::Vector3d(std::cos(el) * std::cos(az),
                                              std::cos(el) * std::sin(az), std::sin(el));
 }

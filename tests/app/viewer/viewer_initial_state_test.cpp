@@ -19,24 +19,24 @@ namespace {
 
 using ::testing::HasSubstr;
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kInitialDeg = std::numbers::pi / 180.0;
 
 // --- Independent oracles: rotation matrices written out from cos and sin ------------------------
 
 Eigen::Matrix3d rot_x(double deg) {
-  const double c = std::cos(deg * kDeg), s = std::sin(deg * kDeg);
+  const double c = std::cos(deg * kInitialDeg), s = std::sin(deg * kInitialDeg);
   Eigen::Matrix3d m;
   m << 1, 0, 0, 0, c, -s, 0, s, c;
   return m;
 }
 Eigen::Matrix3d rot_y(double deg) {
-  const double c = std::cos(deg * kDeg), s = std::sin(deg * kDeg);
+  const double c = std::cos(deg * kInitialDeg), s = std::sin(deg * kInitialDeg);
   Eigen::Matrix3d m;
   m << c, 0, s, 0, 1, 0, -s, 0, c;
   return m;
 }
 Eigen::Matrix3d rot_z(double deg) {
-  const double c = std::cos(deg * kDeg), s = std::sin(deg * kDeg);
+  const double c = std::cos(deg * kInitialDeg), s = std::sin(deg * kInitialDeg);
   Eigen::Matrix3d m;
   m << c, -s, 0, s, c, 0, 0, 0, 1;
   return m;
@@ -324,7 +324,7 @@ TEST(ViewerInitialState, TopPoseRoundTripLeansTowardsPlusX) {
   // The axis (pivot to centre of mass) is tilted 20 degrees from +z towards +x.
   const Eigen::Matrix3d R = state.orientation.toRotationMatrix();
   const Eigen::Vector3d axis = (R * top.center_offset).normalized();
-  expect_vec_near(axis, Eigen::Vector3d(std::sin(20 * kDeg), 0.0, std::cos(20 * kDeg)), 1e-13);
+  expect_vec_near(axis, Eigen::Vector3d(std::sin(20 * kInitialDeg), 0.0, std::cos(20 * kInitialDeg)), 1e-13);
   // w is along the axis with nothing else.
   expect_vec_near(engine::angular_velocity(top, state), 150.0 * axis, 1e-10);
   // Pivot kinematics: the centre of mass sits on the arm and does not move (w parallel to it).
@@ -359,7 +359,7 @@ TEST(ViewerInitialState, TopUnderSidewaysGravityTiltsFromItsUp) {
   EXPECT_NEAR(back.tilt_deg, 40.0, 1e-10);
   EXPECT_NEAR(back.spin, 10.0, 1e-12);
   const Eigen::Vector3d axis = (state.orientation * top.center_offset).normalized();
-  expect_vec_near(axis, Eigen::Vector3d(std::cos(40 * kDeg), std::sin(40 * kDeg), 0.0), 1e-13);
+  expect_vec_near(axis, Eigen::Vector3d(std::cos(40 * kInitialDeg), std::sin(40 * kInitialDeg), 0.0), 1e-13);
 }
 
 TEST(ViewerInitialState, HeavyTopSceneReadsItsTiltAndSpin) {
@@ -372,14 +372,14 @@ TEST(ViewerInitialState, HeavyTopSceneReadsItsTiltAndSpin) {
   ASSERT_TRUE(is_top(top));
   // The scene's orientation [w, x, y, z] = [0.98877, 0.14944, 0, 0] turns the top's axis
   // (body +z, tip to centre of mass) about x by 2 atan2(x, w), and w = 120 rad/s about it.
-  const double tilt = 2.0 * std::atan2(0.1494381325, 0.9887710779) / kDeg;
+  const double tilt = 2.0 * std::atan2(0.1494381325, 0.9887710779) / kInitialDeg;
   const TopPose pose = top_pose(top, state);
   EXPECT_NEAR(pose.tilt_deg, tilt, 1e-6);
   EXPECT_NEAR(pose.spin, 120.0, 1e-6);
   // The scene leans the top towards -y (a turn about +x); set_top_pose with the same pose leans
   // it towards +x instead, at the same tilt and spin, still spinning about its own body axis.
   const Eigen::Vector3d scene_axis = (state.orientation * top.center_offset).normalized();
-  expect_vec_near(scene_axis, Eigen::Vector3d(0, -std::sin(tilt * kDeg), std::cos(tilt * kDeg)),
+  expect_vec_near(scene_axis, Eigen::Vector3d(0, -std::sin(tilt * kInitialDeg), std::cos(tilt * kInitialDeg)),
                   1e-9);
   engine::BodyState copy = state;
   set_top_pose(top, copy, pose);
@@ -388,7 +388,7 @@ TEST(ViewerInitialState, HeavyTopSceneReadsItsTiltAndSpin) {
   EXPECT_NEAR(back.spin, pose.spin, 1e-9);
   const Eigen::Vector3d arm = copy.orientation * top.center_offset;
   expect_vec_near(arm.normalized(),
-                  Eigen::Vector3d(std::sin(tilt * kDeg), 0, std::cos(tilt * kDeg)), 1e-9);
+                  Eigen::Vector3d(std::sin(tilt * kInitialDeg), 0, std::cos(tilt * kInitialDeg)), 1e-9);
   expect_vec_near(copy.position, top.pivot + arm, 1e-14);
   expect_vec_near(initial_omega(top, copy, VectorFrame::kBody), Eigen::Vector3d(0, 0, 120), 1e-9);
 }

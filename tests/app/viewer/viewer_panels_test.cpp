@@ -23,8 +23,8 @@
 namespace tumble::app::viewer {
 namespace {
 
-constexpr int kWidth = 1024;
-constexpr int kHeight = 720;
+constexpr int kViewerPanelsWidth = 1024;
+constexpr int kViewerPanelsHeight = 720;
 
 class ViewerPanels : public testing::CommandTest {
  protected:
@@ -41,7 +41,8 @@ class ViewerPanels : public testing::CommandTest {
     context_ = ImGui::CreateContext();
     ImGuiIO& io = ImGui::GetIO();
     io.IniFilename = nullptr;
-    io.DisplaySize = ImVec2(static_cast<float>(kWidth), static_cast<float>(kHeight));
+    io.DisplaySize =
+        ImVec2(static_cast<float>(kViewerPanelsWidth), static_cast<float>(kViewerPanelsHeight));
     unsigned char* pixels = nullptr;
     int width = 0;
     int height = 0;
@@ -71,7 +72,7 @@ class ViewerPanels : public testing::CommandTest {
     for (const InputEvent& event : events) input_.feed(io, event);
     io.DeltaTime = 1.0f / 60.0f;
     ImGui::NewFrame();
-    panels_.draw(*viewer_, {60.0, 16.7}, kWidth, kHeight);
+    panels_.draw(*viewer_, {60.0, 16.7}, kViewerPanelsWidth, kViewerPanelsHeight);
     ImGui::EndFrame();
     input_.end_frame(io);
   }
@@ -123,10 +124,10 @@ TEST_F(ViewerPanels, TheControlPanelFillsTheRightEdgeBelowAMargin) {
   frame();
   ImGuiWindow* panel = window("tumble view");
   ASSERT_NE(panel, nullptr);
-  EXPECT_FLOAT_EQ(panel->Pos.x, kWidth - kPanelWidth - 10.0f);
+  EXPECT_FLOAT_EQ(panel->Pos.x, kViewerPanelsWidth - kPanelWidth - 10.0f);
   EXPECT_FLOAT_EQ(panel->Pos.y, 10.0f);
   EXPECT_FLOAT_EQ(panel->Size.x, kPanelWidth);
-  EXPECT_FLOAT_EQ(panel->Size.y, kHeight - 20.0f);
+  EXPECT_FLOAT_EQ(panel->Size.y, kViewerPanelsHeight - 20.0f);
 }
 
 TEST_F(ViewerPanels, ThePanelFollowsTheTextSize) {
@@ -147,9 +148,9 @@ TEST_F(ViewerPanels, ThePanelFollowsTheTextSize) {
   ASSERT_NE(panel, nullptr);
   EXPECT_EQ(ImGui::GetFontSize(), 20.0f);
   EXPECT_FLOAT_EQ(panel->Size.x, 460.0f);
-  EXPECT_FLOAT_EQ(panel->Pos.x, kWidth - 460.0f - 15.0f);
+  EXPECT_FLOAT_EQ(panel->Pos.x, kViewerPanelsWidth - 460.0f - 15.0f);
   EXPECT_FLOAT_EQ(panel->Pos.y, 15.0f);
-  EXPECT_FLOAT_EQ(panel->Size.y, kHeight - 30.0f);
+  EXPECT_FLOAT_EQ(panel->Size.y, kViewerPanelsHeight - 30.0f);
 }
 
 TEST_F(ViewerPanels, NothingOpenShowsOnlyTheFilesSectionClosed) {
@@ -261,7 +262,7 @@ TEST_F(ViewerPanels, NoticesGetAWindowOfTheirOwnAtTheBottomLeft) {
   ImGuiWindow* notices = window("notices");
   ASSERT_NE(notices, nullptr);
   EXPECT_FLOAT_EQ(notices->Pos.x, 10.0f);
-  EXPECT_FLOAT_EQ(notices->Pos.y + notices->Size.y, kHeight - 10.0f);
+  EXPECT_FLOAT_EQ(notices->Pos.y + notices->Size.y, kViewerPanelsHeight - 10.0f);
 }
 
 }  // namespace
