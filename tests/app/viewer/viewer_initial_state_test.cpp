@@ -324,7 +324,8 @@ TEST(ViewerInitialState, TopPoseRoundTripLeansTowardsPlusX) {
   // The axis (pivot to centre of mass) is tilted 20 degrees from +z towards +x.
   const Eigen::Matrix3d R = state.orientation.toRotationMatrix();
   const Eigen::Vector3d axis = (R * top.center_offset).normalized();
-  expect_vec_near(axis, Eigen::Vector3d(std::sin(20 * kInitialDeg), 0.0, std::cos(20 * kInitialDeg)), 1e-13);
+  expect_vec_near(
+      axis, Eigen::Vector3d(std::sin(20 * kInitialDeg), 0.0, std::cos(20 * kInitialDeg)), 1e-13);
   // w is along the axis with nothing else.
   expect_vec_near(engine::angular_velocity(top, state), 150.0 * axis, 1e-10);
   // Pivot kinematics: the centre of mass sits on the arm and does not move (w parallel to it).
@@ -359,7 +360,8 @@ TEST(ViewerInitialState, TopUnderSidewaysGravityTiltsFromItsUp) {
   EXPECT_NEAR(back.tilt_deg, 40.0, 1e-10);
   EXPECT_NEAR(back.spin, 10.0, 1e-12);
   const Eigen::Vector3d axis = (state.orientation * top.center_offset).normalized();
-  expect_vec_near(axis, Eigen::Vector3d(std::cos(40 * kInitialDeg), std::sin(40 * kInitialDeg), 0.0), 1e-13);
+  expect_vec_near(
+      axis, Eigen::Vector3d(std::cos(40 * kInitialDeg), std::sin(40 * kInitialDeg), 0.0), 1e-13);
 }
 
 TEST(ViewerInitialState, HeavyTopSceneReadsItsTiltAndSpin) {
@@ -379,7 +381,8 @@ TEST(ViewerInitialState, HeavyTopSceneReadsItsTiltAndSpin) {
   // The scene leans the top towards -y (a turn about +x); set_top_pose with the same pose leans
   // it towards +x instead, at the same tilt and spin, still spinning about its own body axis.
   const Eigen::Vector3d scene_axis = (state.orientation * top.center_offset).normalized();
-  expect_vec_near(scene_axis, Eigen::Vector3d(0, -std::sin(tilt * kInitialDeg), std::cos(tilt * kInitialDeg)),
+  expect_vec_near(scene_axis,
+                  Eigen::Vector3d(0, -std::sin(tilt * kInitialDeg), std::cos(tilt * kInitialDeg)),
                   1e-9);
   engine::BodyState copy = state;
   set_top_pose(top, copy, pose);
@@ -388,7 +391,8 @@ TEST(ViewerInitialState, HeavyTopSceneReadsItsTiltAndSpin) {
   EXPECT_NEAR(back.spin, pose.spin, 1e-9);
   const Eigen::Vector3d arm = copy.orientation * top.center_offset;
   expect_vec_near(arm.normalized(),
-                  Eigen::Vector3d(std::sin(tilt * kInitialDeg), 0, std::cos(tilt * kInitialDeg)), 1e-9);
+                  Eigen::Vector3d(std::sin(tilt * kInitialDeg), 0, std::cos(tilt * kInitialDeg)),
+                  1e-9);
   expect_vec_near(copy.position, top.pivot + arm, 1e-14);
   expect_vec_near(initial_omega(top, copy, VectorFrame::kBody), Eigen::Vector3d(0, 0, 120), 1e-9);
 }
