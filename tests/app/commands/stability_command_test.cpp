@@ -24,7 +24,7 @@ using tumble::testing::run_command;
 using tumble::testing::tumble_executable;
 
 /// The CSV as rows of column name -> value (RFC 4180, as tumble writes it).
-std::vector<std::map<std::string, std::string>> stability_command_read_csv(
+std::vector<std::map<std::string, std::string>> stability_rows(
     const std::filesystem::path& file, std::vector<std::string>* header = nullptr) {
   testing::CsvTable table = testing::read_csv(file);
   if (header) *header = table.header;
@@ -32,7 +32,7 @@ std::vector<std::map<std::string, std::string>> stability_command_read_csv(
 }
 
 /// The one row of (case, integrator, rate dt).
-std::map<std::string, std::string> stability_command_find_row(
+std::map<std::string, std::string> find_stability_row(
     const std::vector<std::map<std::string, std::string>>& rows, const std::string& case_name,
     const std::string& integrator, double rate_dt) {
   for (const auto& row : rows) {
@@ -77,12 +77,12 @@ TEST_F(QuickSuite, ExitsZeroWithProgressOnStderr) {
 }
 
 TEST_F(QuickSuite, ExplicitEulerBlowsUpOnTheNeedleWhereSplittingIsStable) {
-  const auto rows = stability_command_read_csv(out() / "stability.csv");
-  const auto explicit_run = stability_command_find_row(rows, "needle", "explicit-euler", 5.0);
+  const auto rows = stability_rows(out() / "stability.csv");
+  const auto explicit_run = find_stability_row(rows, "needle", "explicit-euler", 5.0);
   EXPECT_EQ(explicit_run.at("outcome"), "blew up");
   EXPECT_FALSE(explicit_run.at("blowup_time").empty());
   EXPECT_GT(std::stod(explicit_run.at("blowup_time")), 0.0);
-  const auto splitting = stability_command_find_row(rows, "needle", "splitting", 5.0);
+  const auto splitting = find_stability_row(rows, "needle", "splitting", 5.0);
   EXPECT_EQ(splitting.at("outcome"), "stable");
   EXPECT_LT(std::abs(std::stod(splitting.at("energy_max_gain"))), 1e-3);
   EXPECT_EQ(splitting.at("reference"), "exact");
@@ -90,45 +90,42 @@ TEST_F(QuickSuite, ExplicitEulerBlowsUpOnTheNeedleWhereSplittingIsStable) {
 }
 
 TEST_F(QuickSuite, ImplicitEulerDampsTheFastTop) {
-  const auto rows = stability_command_read_csv(out() / "stability.csv");
+  const auto rows = stability_rows(out() / "stability.csv");
   for (const double rate_dt : {0.2, 0.5}) {
-    const auto run = stability_command_find_row(rows, "heavy-top", "implicit-euler", rate_dt);
+    const auto run = find_stability_row(rows, "heavy-top", "implicit-euler", rate_dt);
     EXPECT_LT(std::stod(run.at("energy_change_final")), -1e-3);
     EXPECT_EQ(run.at("reference"), "exact top");
   }
   // At w3 dt = 0.2 a persistent loss within 1% of the scale; at 0.5 the damped precession has
   // turned world L by more than 1%: bounded, but wrong.
-  EXPECT_EQ(stability_command_find_row(rows, "heavy-top", "implicit-euler", 0.2).at("outcome"),
-            "damped");
-  const auto coarse = stability_command_find_row(rows, "heavy-top", "implicit-euler", 0.5);
+  EXPECT_EQ(find_stability_row(rows, "heavy-top", "implicit-euler", 0.2).at("outcome"), "damped");
+  const auto coarse = find_stability_row(rows, "heavy-top", "implicit-euler", 0.5);
   EXPECT_EQ(coarse.at("outcome"), "wrong");
   EXPECT_GT(std::stod(coarse.at("momentum_error")), 1e-2);
   // The heavy top is a Lagrange top: the exact integrator runs it (engine/PHYSICS.md §4b),
   // keeps its invariants and lands on the reference, which is the same solution.
-  const auto exact = stability_command_find_row(rows, "heavy-top", "exact", 0.2);
+  const auto exact = find_stability_row(rows, "heavy-top", "exact", 0.2);
   EXPECT_EQ(exact.at("outcome"), "stable");
   EXPECT_LT(std::stod(exact.at("orientation_error")), 1e-12);
 }
 
 TEST_F(QuickSuite, SymplecticEulerFlipsAcrossWnDtOfTwoOnTheStiffSpring) {
-  const auto rows = stability_command_read_csv(out() / "stability.csv");
+  const auto rows = stability_rows(out() / "stability.csv");
   // Below the limit the energy swings to 1 / (1 - wn dt / 2) times E0 (4x, 20x) and stays
   // bounded: wrong (energy off by far more than 1%), not blown up.
   for (const double rate_dt : {1.5, 1.9}) {
-    const auto run =
-        stability_command_find_row(rows, "stiff-spring", "semi-implicit-euler", rate_dt);
+    const auto run = find_stability_row(rows, "stiff-spring", "semi-implicit-euler", rate_dt);
     EXPECT_EQ(run.at("outcome"), "wrong") << rate_dt;
     EXPECT_GT(std::stod(run.at("energy_max_gain")), 1.0) << rate_dt;
     EXPECT_FALSE(run.at("position_error").empty());
   }
-  EXPECT_EQ(
-      stability_command_find_row(rows, "stiff-spring", "semi-implicit-euler", 2.1).at("outcome"),
-      "blew up");
+  EXPECT_EQ(find_stability_row(rows, "stiff-spring", "semi-implicit-euler", 2.1).at("outcome"),
+            "blew up");
 }
 
 TEST_F(QuickSuite, CsvHasEveryColumnAndOneRowPerRun) {
   std::vector<std::string> header;
-  const auto rows = stability_command_read_csv(out() / "stability.csv", &header);
+  const auto rows = stability_rows(out() / "stability.csv", &header);
   for (const char* column : {"suite",
                              "case",
                              "integrator",
@@ -227,13 +224,13 @@ TEST(StabilityCommand, UserSceneAppearsAsACase) {
   const auto result = run_command(tumble_executable() + " stability --integrators splitting,rk4 '" +
                                   scene.string() + "' -o '" + out.string() + "'");
   ASSERT_EQ(result.status, 0) << result.err;
-  const auto rows = stability_command_read_csv(out / "stability.csv");
+  const auto rows = stability_rows(out / "stability.csv");
   ASSERT_EQ(rows.size(), 2u * 4u);  // dt x {1, 2, 4, 8}
   for (const auto& row : rows) {
     EXPECT_EQ(row.at("case"), "wobbly");
     EXPECT_EQ(row.at("outcome"), "stable") << row.at("integrator") << " " << row.at("dt");
   }
-  EXPECT_EQ(stability_command_find_row(rows, "wobbly", "rk4", 0.08).at("reference"), "exact");
+  EXPECT_EQ(find_stability_row(rows, "wobbly", "rk4", 0.08).at("reference"), "exact");
   EXPECT_THAT(read_text(out / "stability.md"), HasSubstr("## Case `wobbly`"));
 
   // With --dts the sweep is the user's.
@@ -241,7 +238,7 @@ TEST(StabilityCommand, UserSceneAppearsAsACase) {
       run_command(tumble_executable() + " stability --integrators rk4 --dts 0.05,0.1 '" +
                   scene.string() + "' -o '" + out.string() + "'");
   ASSERT_EQ(again.status, 0) << again.err;
-  EXPECT_EQ(stability_command_read_csv(out / "stability.csv").size(), 2u);
+  EXPECT_EQ(stability_rows(out / "stability.csv").size(), 2u);
   std::filesystem::remove_all(dir);
 }
 
@@ -268,22 +265,22 @@ TEST(StabilityCommand, FreeAndForcedScenesAreJudgedAgainstTheirReference) {
       (dir / "free.json").string() + "' '" + (dir / "pushed.json").string() + "' '" +
       (dir / "damped.json").string() + "' -o '" + out.string() + "'");
   ASSERT_EQ(result.status, 0) << result.err;
-  const auto rows = stability_command_read_csv(out / "stability.csv");
+  const auto rows = stability_rows(out / "stability.csv");
   ASSERT_EQ(rows.size(), 3u * 3u * 4u);
 
   // The free body: seed-semi-implicit keeps the invariants and is wrong; rk4 is stable.
   for (const double dt : {0.01, 0.08}) {
-    const auto seed = stability_command_find_row(rows, "free", "seed-semi-implicit", dt);
+    const auto seed = find_stability_row(rows, "free", "seed-semi-implicit", dt);
     EXPECT_EQ(seed.at("outcome"), "wrong") << dt;
     EXPECT_LT(std::stod(seed.at("energy_max_gain")), 1e-9) << dt;
     EXPECT_GT(std::stod(seed.at("orientation_error")), 0.1) << dt;
-    EXPECT_EQ(stability_command_find_row(rows, "free", "rk4", dt).at("outcome"), "stable") << dt;
+    EXPECT_EQ(find_stability_row(rows, "free", "rk4", dt).at("outcome"), "stable") << dt;
   }
   // The forced bodies: classified against dopri, every shared instant compared (scene steps
   // dt x {1, 2, 4, 8} all land on the reference's samples).
   for (const char* name : {"pushed", "damped"}) {
     for (const double dt : {0.01, 0.02, 0.04, 0.08}) {
-      const auto rk4 = stability_command_find_row(rows, name, "rk4", dt);
+      const auto rk4 = find_stability_row(rows, name, "rk4", dt);
       EXPECT_EQ(rk4.at("outcome"), "stable") << name << " " << dt;
       EXPECT_EQ(rk4.at("reference"), "dopri 1e-13");
       EXPECT_FALSE(rk4.at("energy_max_gain").empty());
@@ -296,7 +293,7 @@ TEST(StabilityCommand, FreeAndForcedScenesAreJudgedAgainstTheirReference) {
   }
   // Explicit Euler on the damped spring at wn dt = 0.16: energy off the reference's by more
   // than 1% of the scale, shown as wrong with its position error.
-  const auto euler = stability_command_find_row(rows, "damped", "explicit-euler", 0.08);
+  const auto euler = find_stability_row(rows, "damped", "explicit-euler", 0.08);
   EXPECT_EQ(euler.at("outcome"), "wrong");
   EXPECT_GT(std::stod(euler.at("position_error")), 1e-3);
 
@@ -322,7 +319,7 @@ TEST(StabilityCommand, ReplacesOnlyAnEmptyFolderOrAnEarlierOutput) {
   ASSERT_EQ(stability(dir / "out").status, 0);
   const auto again = stability(dir / "out");
   EXPECT_EQ(again.status, 0) << again.err;
-  EXPECT_EQ(stability_command_read_csv(dir / "out" / "stability.csv").size(), 1u);
+  EXPECT_EQ(stability_rows(dir / "out" / "stability.csv").size(), 1u);
   // An empty folder is used.
   std::filesystem::create_directory(dir / "empty");
   EXPECT_EQ(stability(dir / "empty").status, 0);
