@@ -14,7 +14,7 @@ import pathlib
 import re
 import sys
 
-ROOTS = ["app", "engine", "render", "assets/tools"]
+ROOTS = ["app", "base", "engine", "render", "assets/tools"]
 SUFFIXES = {".cpp", ".hpp", ".h", ".cc"}
 SCOPE_WORDS = re.compile(r"\b(namespace|class|struct|union|enum)\b[^()]*$|\bextern\s+\"C\"\s*$")
 CONTROL = re.compile(r"^\s*(if|for|while|switch|catch|do|else|try)\b")

@@ -19,8 +19,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/primitive_meshes.hpp"
-#include "engine/triangle_mesh.hpp"
+#include "engine/geometry/primitive_meshes.hpp"
+#include "engine/geometry/triangle_mesh.hpp"
 
 namespace {
 

@@ -16,11 +16,11 @@
 #include <thread>
 #include <vector>
 
+#include "base/errors.hpp"
+#include "base/file_checks.hpp"
+#include "base/video_encoding.hpp"
 #include "frame_queue.hpp"
 #include "output_paths.hpp"
-#include "tumble/errors.hpp"
-#include "tumble/file_checks.hpp"
-#include "tumble/video_encoding.hpp"
 #include "unique_fd.hpp"
 
 extern char** environ;

@@ -6,9 +6,9 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "base/errors.hpp"
 #include "ffmpeg_sink.hpp"
 #include "png_sequence_sink.hpp"
-#include "tumble/errors.hpp"
 
 namespace tumble::render {
 

@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "tumble/errors.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::render::detail {
 

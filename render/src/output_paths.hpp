@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <string>
 
-#include "tumble/temporary_path.hpp"  // temporary_sibling: the one naming rule
+#include "base/temporary_path.hpp"  // temporary_sibling: the one naming rule
 
 namespace tumble::render::detail {
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "tumble/errors.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::render {
 

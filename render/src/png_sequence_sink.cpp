@@ -11,11 +11,11 @@
 #include <thread>
 #include <vector>
 
+#include "base/errors.hpp"
+#include "base/file_checks.hpp"
 #include "frame_queue.hpp"
 #include "output_paths.hpp"
 #include "render/png_io.hpp"
-#include "tumble/errors.hpp"
-#include "tumble/file_checks.hpp"
 
 namespace tumble::render::detail {
 

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "app/commands/render_command.hpp"
+#include "base/video_encoding.hpp"
 #include "render/image_sink.hpp"
-#include "tumble/video_encoding.hpp"
 
 namespace {
 

@@ -4,8 +4,8 @@
 
 #include <Eigen/Geometry>
 
-#include "engine/elliptic.hpp"
-#include "engine/torque_free_exact.hpp"
+#include "engine/exact/elliptic.hpp"
+#include "engine/exact/torque_free_exact.hpp"
 
 namespace {
 

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/primitive_meshes.hpp"
+#include "engine/geometry/primitive_meshes.hpp"
 #include "import_worker.hpp"
 #include "isolated_import.hpp"
 

@@ -16,9 +16,9 @@
 #include <random>
 #include <string>
 
-#include "engine/body_batch.hpp"
-#include "engine/integrators.hpp"
-#include "engine/simulation.hpp"
+#include "engine/dynamics/body_batch.hpp"
+#include "engine/dynamics/integrators.hpp"
+#include "engine/simulation/simulation.hpp"
 
 namespace {
 

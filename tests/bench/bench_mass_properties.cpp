@@ -19,11 +19,11 @@
 #include <random>
 
 #include "app/scene/mesh_inspection.hpp"
-#include "engine/mass_properties.hpp"
-#include "engine/mesh_analysis.hpp"
-#include "engine/mesh_import.hpp"
-#include "engine/mesh_topology.hpp"
-#include "engine/primitive_meshes.hpp"
+#include "engine/geometry/mesh_topology.hpp"
+#include "engine/geometry/primitive_meshes.hpp"
+#include "engine/import/mesh_import.hpp"
+#include "engine/mass/mass_properties.hpp"
+#include "engine/mass/mesh_analysis.hpp"
 #include "support/stl_writer.hpp"
 
 namespace {

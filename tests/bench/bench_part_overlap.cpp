@@ -8,10 +8,10 @@
 //   BM_OverlapCheckHollowBalls  the checks alone on that mesh
 #include <benchmark/benchmark.h>
 
-#include "engine/mesh_analysis.hpp"
-#include "engine/mesh_topology.hpp"
-#include "engine/primitive_meshes.hpp"
-#include "part_overlap.hpp"
+#include "engine/geometry/mesh_topology.hpp"
+#include "engine/geometry/part_overlap.hpp"
+#include "engine/geometry/primitive_meshes.hpp"
+#include "engine/mass/mesh_analysis.hpp"
 
 namespace {
 

@@ -12,8 +12,8 @@
 #include <utility>
 #include <vector>
 
-#include "engine/primitive_meshes.hpp"
-#include "engine/triangle_mesh.hpp"
+#include "engine/geometry/primitive_meshes.hpp"
+#include "engine/geometry/triangle_mesh.hpp"
 
 namespace tumble::mesh_fixtures {
 

@@ -4,10 +4,10 @@
 // (the byte modulo 4); the rest is the file.
 #include <array>
 
-#include "engine/mesh_analysis.hpp"
-#include "engine/mesh_import.hpp"
+#include "base/errors.hpp"
+#include "engine/import/mesh_import.hpp"
+#include "engine/mass/mesh_analysis.hpp"
 #include "fuzz_target.hpp"
-#include "tumble/errors.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;

@@ -12,8 +12,8 @@
 #include "app/robot/link_inertial.hpp"
 #include "app/robot/rewrite.hpp"
 #include "app/robot/robot_model.hpp"
+#include "base/errors.hpp"
 #include "fuzz_target.hpp"
-#include "tumble/errors.hpp"
 
 namespace {
 

@@ -11,8 +11,8 @@
 #include "app/scene/render_settings.hpp"
 #include "app/scene/scene.hpp"
 #include "app/scene/strict_json.hpp"
+#include "base/errors.hpp"
 #include "fuzz_target.hpp"
-#include "tumble/errors.hpp"
 
 namespace {
 

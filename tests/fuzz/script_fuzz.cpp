@@ -1,7 +1,7 @@
 // Fuzz target: the viewer's `--script` parser (app/viewer/src/viewer_script.cpp) on any text.
 #include "app/viewer/viewer_input.hpp"
+#include "base/errors.hpp"
 #include "fuzz_target.hpp"
-#include "tumble/errors.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {

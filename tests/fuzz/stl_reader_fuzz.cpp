@@ -2,9 +2,9 @@
 // *.stl. Whatever it reads must be a mesh whose triangles index its own vertices.
 #include <cstdlib>
 
+#include "base/errors.hpp"
 #include "binary_stl.hpp"
 #include "fuzz_target.hpp"
-#include "tumble/errors.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const tumble::fuzz::TemporaryInputFile file(data, size, ".stl");

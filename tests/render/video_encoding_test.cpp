@@ -1,6 +1,6 @@
 // The encoder settings render and merge share (tumble/video_encoding.hpp): the key-frame
 // interval that video shards are cut on, and what makes an MP4 segment code as the whole video.
-#include "tumble/video_encoding.hpp"
+#include "base/video_encoding.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

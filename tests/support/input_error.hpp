@@ -1,21 +1,21 @@
 #pragma once
-// The message of the engine::InputError a call throws, for tests of error reporting.
+// The message of the tumble::InputError a call throws, for tests of error reporting.
 
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "engine/input_error.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::testing {
 
-/// The message of the engine::InputError that `action()` throws. When it throws none, the test
+/// The message of the tumble::InputError that `action()` throws. When it throws none, the test
 /// fails (saying `what` was accepted) and the result is empty. Other exceptions propagate.
 template <typename Action>
 std::string input_error_of(Action&& action, const std::string& what = "the input") {
   try {
     action();
-  } catch (const engine::InputError& error) {
+  } catch (const tumble::InputError& error) {
     return error.what();
   }
   ADD_FAILURE() << "no InputError: " << what << " was accepted";

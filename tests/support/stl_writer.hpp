@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "engine/triangle_mesh.hpp"
+#include "engine/geometry/triangle_mesh.hpp"
 
 namespace tumble::testing {
 

@@ -6,7 +6,7 @@
 
 #include "app/analysis/bench_report.hpp"
 #include "app/analysis/gnuplot.hpp"
-#include "engine/integrators.hpp"
+#include "engine/dynamics/integrators.hpp"
 
 namespace tumble::app {
 namespace {

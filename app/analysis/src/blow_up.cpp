@@ -1,7 +1,7 @@
 #include "app/analysis/blow_up.hpp"
 
 #include "app/support/printf_number.hpp"
-#include "engine/simulation.hpp"
+#include "engine/simulation/simulation.hpp"
 
 namespace tumble::app {
 

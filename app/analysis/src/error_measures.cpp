@@ -5,7 +5,7 @@
 #include <exception>
 #include <sstream>
 
-#include "engine/reference_motion.hpp"
+#include "engine/simulation/reference_motion.hpp"
 
 namespace tumble::app {
 namespace {

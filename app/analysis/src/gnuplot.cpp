@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "app/support/file_write.hpp"
-#include "tumble/errors.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::app {
 namespace {

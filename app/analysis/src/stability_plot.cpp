@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "app/support/file_write.hpp"
-#include "engine/input_error.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::app {
 namespace {
@@ -125,7 +125,7 @@ void draw_heat_map(const std::vector<HeatMapPanel>& panels, const std::filesyste
   } catch (const WriteError&) {
     throw;  // names its file
   } catch (const std::runtime_error& error) {
-    throw engine::InputError(std::string("the heat map: ") + error.what());
+    throw tumble::InputError(std::string("the heat map: ") + error.what());
   }
 }
 

@@ -10,9 +10,9 @@
 #include <cmath>
 #include <limits>
 
-#include "engine/input_error.hpp"
-#include "engine/reference_motion.hpp"
-#include "engine/simulation.hpp"
+#include "base/errors.hpp"
+#include "engine/simulation/reference_motion.hpp"
+#include "engine/simulation/simulation.hpp"
 
 namespace tumble::app {
 namespace {
@@ -272,7 +272,7 @@ StabilityReference stability_reference(const StabilityCase& c) {
   try {
     reference.interval = reference_interval(c);
     reference.samples = motion.sample(reference.interval, c.duration);
-  } catch (const engine::InputError&) {
+  } catch (const tumble::InputError&) {
     return {};
   }
   reference.kind = motion.label();
@@ -299,7 +299,7 @@ StabilityRun run_stability_case(const StabilityCase& c, const engine::Integrator
   std::optional<engine::Simulation> built;
   try {
     built.emplace(c.bodies, c.initial, sweep_settings(c, info.kind, dt));
-  } catch (const engine::InputError& error) {  // the exact solution on a forced case
+  } catch (const tumble::InputError& error) {  // the exact solution on a forced case
     run.note = error.what();
     return run;
   }

@@ -7,7 +7,7 @@
 #include <Eigen/Geometry>
 
 #include "app/scene/scene.hpp"
-#include "engine/input_error.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::app {
 namespace {
@@ -198,7 +198,7 @@ std::vector<SuiteListing> stability_suite_listing() {
 StabilitySuite stability_suite(const std::string& name) {
   if (name == "standard") return standard_suite();
   if (name == "quick") return quick_suite();
-  throw engine::InputError("--suite: unknown suite '" + name +
+  throw tumble::InputError("--suite: unknown suite '" + name +
                            "'; expected one of: standard, quick (see --list-suites)");
 }
 
@@ -216,7 +216,7 @@ StabilityCase scene_case(const std::filesystem::path& file,
   if (dts) {
     for (const double dt : *dts) {
       if (auto problem = step_problem(dt, scene.duration)) {
-        throw engine::InputError("--dts: for " + file.string() + ": " + *problem);
+        throw tumble::InputError("--dts: for " + file.string() + ": " + *problem);
       }
     }
     c.dts = *dts;

@@ -17,15 +17,15 @@
 #include "app/support/output_folder.hpp"
 #include "app/support/printf_number.hpp"
 #include "app/support/progress_bar.hpp"
+#include "base/errors.hpp"
 #include "bench_part.hpp"
 #include "bench_plan.hpp"
-#include "engine/input_error.hpp"
 #include "row_parts.hpp"
 
 namespace tumble::app {
 namespace {
 
-using engine::InputError;
+using tumble::InputError;
 
 std::string case_line(const BenchScene& scene, const BenchCase& c, const CaseResult& r) {
   std::string line = scene.label + " " + c.integrator + " " +

@@ -4,8 +4,8 @@
 #include <set>
 
 #include "app/support/file_write.hpp"
+#include "base/errors.hpp"
 #include "row_parts.hpp"
-#include "tumble/errors.hpp"
 
 namespace tumble::app {
 

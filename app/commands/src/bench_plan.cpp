@@ -15,12 +15,12 @@
 #include "app/scene/scene.hpp"
 #include "app/support/output_folder.hpp"
 #include "app/support/printf_number.hpp"
-#include "engine/input_error.hpp"
-#include "engine/integrators.hpp"
+#include "base/errors.hpp"
+#include "engine/dynamics/integrators.hpp"
 
 namespace tumble::app {
 
-using engine::InputError;
+using tumble::InputError;
 
 /// A whole number in [minimum, ...] or an error naming the option.
 long long parse_whole_number(const std::string& text, const char* option, long long minimum) {

@@ -38,18 +38,18 @@
 #include "app/support/interrupt_guard.hpp"
 #include "app/support/progress_bar.hpp"
 #include "app/video/image_compositing.hpp"
-#include "engine/input_error.hpp"
-#include "engine/integrators.hpp"
-#include "engine/reference_motion.hpp"
-#include "engine/simulation.hpp"
+#include "base/errors.hpp"
+#include "engine/dynamics/integrators.hpp"
+#include "engine/simulation/reference_motion.hpp"
+#include "engine/simulation/simulation.hpp"
 #include "render/image_sink.hpp"
 #include "render/renderer.hpp"
 
 namespace tumble::app {
 namespace {
 
-using engine::InputError;
 using render::Rgba;
+using tumble::InputError;
 
 /// A run's colour in the overlay, with the name the legend gives it.
 struct NamedColour {

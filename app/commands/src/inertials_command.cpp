@@ -10,10 +10,10 @@
 #include "app/commands/exit_status.hpp"
 #include "app/robot/rewrite.hpp"
 #include "app/support/file_write.hpp"
+#include "base/errors.hpp"
+#include "base/file_checks.hpp"
+#include "base/temporary_path.hpp"
 #include "inertials_report.hpp"
-#include "tumble/errors.hpp"
-#include "tumble/file_checks.hpp"
-#include "tumble/temporary_path.hpp"
 
 namespace tumble::app {
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "engine/principal_frame.hpp"
+#include "engine/mass/principal_frame.hpp"
 
 namespace tumble::app {
 namespace {

@@ -18,7 +18,7 @@
 #include "app/scene/mesh_inspection.hpp"
 #include "app/scene/unit_hint.hpp"
 #include "app/support/csv_writer.hpp"
-#include "engine/input_error.hpp"
+#include "base/errors.hpp"
 #include "inspect_inputs.hpp"
 #include "inspect_output.hpp"
 #include "inspect_part.hpp"
@@ -106,7 +106,7 @@ InspectOutcome inspect_one(const InspectInput& input, const engine::MassOptions&
     engine::MeshReport report = inspect_file(input.file, mass);
     if (auto hint = unit_hint(report, mass.scale)) report.warnings.push_back(std::move(*hint));
     outcome.report = std::move(report);
-  } catch (const engine::InputError& error) {
+  } catch (const tumble::InputError& error) {
     outcome.error = error.what();
   } catch (...) {
     outcome.failure = std::current_exception();
@@ -119,13 +119,13 @@ InspectOutcome inspect_one(const InspectInput& input, const engine::MassOptions&
 std::optional<Shard> inspect_shard(const InspectOptions& options) {
   if (!options.shard) return std::nullopt;
   const Shard shard = parse_shard(*options.shard);
-  if (!options.output) throw engine::InputError("--shard: -o FILE.jsonl is required (the part)");
+  if (!options.output) throw tumble::InputError("--shard: -o FILE.jsonl is required (the part)");
   if (options.output->extension() != ".jsonl") {
-    throw engine::InputError("--shard: -o " + options.output->string() +
+    throw tumble::InputError("--shard: -o " + options.output->string() +
                              ": a part is JSON Lines; expected a name ending in .jsonl");
   }
   if (options.format_given && options.format != InspectFormat::jsonl) {
-    throw engine::InputError("--shard: a part is JSON Lines; drop --format (or use jsonl)");
+    throw tumble::InputError("--shard: a part is JSON Lines; drop --format (or use jsonl)");
   }
   return shard;
 }
@@ -204,7 +204,7 @@ CLI::App& add_inspect_command(CLI::App& cli, InspectOptions& options) {
       [&](const std::string& text) {
         try {
           options.mass.scale = parse_scale_factors(text);
-        } catch (const engine::InputError& error) {
+        } catch (const tumble::InputError& error) {
           throw CLI::ValidationError(error.what());
         }
       },
@@ -223,7 +223,7 @@ CLI::App& add_inspect_command(CLI::App& cli, InspectOptions& options) {
 
 Eigen::Vector3d parse_scale_factors(const std::string& text) {
   const auto refuse = [&] {
-    return engine::InputError(
+    return tumble::InputError(
         "--scale: expected one factor or three (sx,sy,sz), each finite "
         "and non-zero, got \"" +
         text + "\"");

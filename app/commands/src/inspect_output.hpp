@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands/inspect_command.hpp"
-#include "engine/mesh_analysis.hpp"
+#include "engine/mass/mesh_analysis.hpp"
 
 namespace tumble::app {
 

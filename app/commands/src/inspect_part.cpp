@@ -1,7 +1,7 @@
 // An inspect shard's job and manifest line.
 #include "inspect_part.hpp"
 
-#include "tumble/errors.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::app {
 

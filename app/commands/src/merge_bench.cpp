@@ -8,11 +8,11 @@
 #include "app/analysis/bench_report.hpp"
 #include "app/analysis/gnuplot.hpp"
 #include "app/support/output_folder.hpp"
+#include "base/errors.hpp"
 #include "bench_part.hpp"
 #include "bench_plan.hpp"
 #include "merge_rows.hpp"
 #include "row_parts.hpp"
-#include "tumble/errors.hpp"
 
 namespace tumble::app {
 namespace {

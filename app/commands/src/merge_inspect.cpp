@@ -7,9 +7,9 @@
 #include <nlohmann/json.hpp>
 
 #include "app/support/csv_writer.hpp"
+#include "base/errors.hpp"
 #include "merge_rows.hpp"
 #include "row_parts.hpp"
-#include "tumble/errors.hpp"
 
 namespace tumble::app {
 namespace {

@@ -8,11 +8,11 @@
 #include "app/analysis/gnuplot.hpp"
 #include "app/analysis/stability_report.hpp"
 #include "app/support/output_folder.hpp"
+#include "base/errors.hpp"
 #include "merge_rows.hpp"
 #include "row_parts.hpp"
 #include "stability_part.hpp"
 #include "stability_plan.hpp"
-#include "tumble/errors.hpp"
 
 namespace tumble::app {
 namespace {

@@ -14,10 +14,10 @@
 #include "app/farm/shard.hpp"
 #include "app/support/child_process.hpp"
 #include "app/support/file_write.hpp"
-#include "tumble/errors.hpp"
-#include "tumble/file_checks.hpp"
-#include "tumble/temporary_path.hpp"
-#include "tumble/video_encoding.hpp"
+#include "base/errors.hpp"
+#include "base/file_checks.hpp"
+#include "base/temporary_path.hpp"
+#include "base/video_encoding.hpp"
 
 namespace tumble::app {
 

@@ -19,7 +19,7 @@
 #include "app/support/printf_number.hpp"
 #include "app/support/progress_bar.hpp"
 #include "command_line.hpp"
-#include "engine/simulation.hpp"
+#include "engine/simulation/simulation.hpp"
 #include "render/image_sink.hpp"
 #include "video_options_cli.hpp"
 #include "video_part.hpp"

@@ -9,7 +9,7 @@
 #include "app/scene/scene.hpp"
 #include "app/support/file_write.hpp"
 #include "app/support/text_file.hpp"
-#include "tumble/errors.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::app {
 

@@ -14,15 +14,15 @@
 #include "app/support/csv_writer.hpp"
 #include "app/support/interrupt_guard.hpp"
 #include "app/support/printf_number.hpp"
-#include "engine/input_error.hpp"
-#include "engine/integrators.hpp"
-#include "engine/reference_motion.hpp"
-#include "engine/simulation.hpp"
+#include "base/errors.hpp"
+#include "engine/dynamics/integrators.hpp"
+#include "engine/simulation/reference_motion.hpp"
+#include "engine/simulation/simulation.hpp"
 
 namespace tumble::app {
 namespace {
 
-using engine::InputError;
+using tumble::InputError;
 
 /// Applies the command-line options on top of the scene and checks them all.
 void apply_options(const SimulateOptions& options, SceneDescription& scene) {
@@ -136,7 +136,7 @@ int list_integrators(bool as_json, std::ostream& out) {
 }
 
 /// The compiled scene as a simulation, with --blowup-factor over the scene's. Throws
-/// engine::InputError naming the scene file when the integrator cannot handle a body.
+/// tumble::InputError naming the scene file when the integrator cannot handle a body.
 engine::Simulation build_simulation(const SimulateOptions& options, const SceneDescription& scene) {
   CompiledScene compiled = compile_scene(scene);
   engine::SimulationSettings settings = compiled.settings;

@@ -25,8 +25,8 @@
 #include "app/support/file_write.hpp"
 #include "app/support/interrupt_guard.hpp"
 #include "app/support/output_folder.hpp"
-#include "engine/input_error.hpp"
-#include "engine/integrators.hpp"
+#include "base/errors.hpp"
+#include "engine/dynamics/integrators.hpp"
 #include "row_parts.hpp"
 #include "stability_part.hpp"
 #include "stability_plan.hpp"
@@ -34,7 +34,7 @@
 namespace tumble::app {
 namespace {
 
-using engine::InputError;
+using tumble::InputError;
 namespace fs = std::filesystem;
 
 int list_suites(std::ostream& out) {

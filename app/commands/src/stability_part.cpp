@@ -5,8 +5,8 @@
 
 #include "app/analysis/stability_report.hpp"
 #include "app/support/file_write.hpp"
+#include "base/errors.hpp"
 #include "row_parts.hpp"
-#include "tumble/errors.hpp"
 
 namespace tumble::app {
 

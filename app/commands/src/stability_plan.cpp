@@ -9,11 +9,11 @@
 #include "app/analysis/stability_report.hpp"
 #include "app/scene/option_lists.hpp"
 #include "app/support/file_write.hpp"
-#include "engine/input_error.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::app {
 
-using engine::InputError;
+using tumble::InputError;
 namespace fs = std::filesystem;
 
 /// The integrators --integrators names (each name checked), or every one.

@@ -12,7 +12,7 @@
 #include "app/analysis/stability_suite.hpp"
 #include "app/commands/stability_command.hpp"
 #include "app/support/output_folder.hpp"
-#include "engine/integrators.hpp"
+#include "engine/dynamics/integrators.hpp"
 
 namespace tumble::app {
 

@@ -3,9 +3,9 @@
 
 #include "app/farm/part_manifest.hpp"
 #include "app/farm/shard.hpp"
+#include "base/errors.hpp"
+#include "base/video_encoding.hpp"
 #include "render/image_sink.hpp"
-#include "tumble/errors.hpp"
-#include "tumble/video_encoding.hpp"
 
 namespace tumble::app {
 

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cctype>
 
-#include "tumble/errors.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::app {
 

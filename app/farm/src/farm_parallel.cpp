@@ -1,7 +1,7 @@
 // The GNU parallel command line of a farmed job: the shards over hosts or local slots, then the
 // merge.
 #include "app/farm/farm_scripts.hpp"
-#include "tumble/errors.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::app {
 

@@ -9,7 +9,7 @@
 #include <iomanip>
 #include <sstream>
 
-#include "tumble/errors.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::app {
 

@@ -3,7 +3,7 @@
 #include <regex>
 
 #include "app/farm/farm_scripts.hpp"
-#include "tumble/errors.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::app {
 

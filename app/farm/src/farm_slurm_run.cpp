@@ -10,7 +10,7 @@
 
 #include "app/farm/farm_process.hpp"
 #include "app/support/file_write.hpp"
-#include "tumble/errors.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::app {
 

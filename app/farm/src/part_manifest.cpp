@@ -9,7 +9,7 @@
 
 #include "app/support/child_process.hpp"
 #include "app/support/file_write.hpp"
-#include "tumble/errors.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::app {
 

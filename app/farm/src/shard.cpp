@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <charconv>
 
-#include "tumble/errors.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::app {
 

@@ -7,7 +7,7 @@
 #include <numbers>
 #include <variant>
 
-#include "engine/rigid_body.hpp"
+#include "engine/body/rigid_body.hpp"
 
 namespace tumble::app::detail {
 namespace {

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "app/scene/render_settings.hpp"
-#include "engine/rigid_body.hpp"
-#include "engine/triangle_mesh.hpp"
+#include "engine/body/rigid_body.hpp"
+#include "engine/geometry/triangle_mesh.hpp"
 #include "render/draw_list.hpp"
 
 namespace tumble::app::detail {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "app/frame/frame_builder.hpp"
-#include "engine/primitive_meshes.hpp"
+#include "engine/geometry/primitive_meshes.hpp"
 
 namespace tumble::app {
 

@@ -4,7 +4,7 @@
 
 #include <Eigen/Core>
 
-#include "engine/triangle_mesh.hpp"
+#include "engine/geometry/triangle_mesh.hpp"
 #include "render/draw_list.hpp"
 
 namespace tumble::app::detail {

@@ -24,8 +24,8 @@
 #include <variant>
 
 #include "draw_meshes.hpp"
-#include "engine/primitive_meshes.hpp"
-#include "engine/principal_frame.hpp"
+#include "engine/geometry/primitive_meshes.hpp"
+#include "engine/mass/principal_frame.hpp"
 #include "frame_builder_impl.hpp"
 
 namespace tumble::app {

@@ -12,7 +12,7 @@
 #include <cstdio>
 
 #include "app/frame/overlay_fit.hpp"
-#include "engine/integrators.hpp"
+#include "engine/dynamics/integrators.hpp"
 #include "frame_builder_impl.hpp"
 #include "render/overlay_layout.hpp"
 

@@ -8,7 +8,7 @@
 
 #include <Eigen/Geometry>
 
-#include "engine/principal_frame.hpp"
+#include "engine/mass/principal_frame.hpp"
 
 namespace tumble::app::robot {
 namespace {

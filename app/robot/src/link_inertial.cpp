@@ -6,8 +6,8 @@
 #include <type_traits>
 
 #include "app/scene/mesh_inspection.hpp"
-#include "engine/mesh_analysis.hpp"
-#include "tumble/errors.hpp"
+#include "base/errors.hpp"
+#include "engine/mass/mesh_analysis.hpp"
 
 namespace tumble::app::robot {
 namespace {

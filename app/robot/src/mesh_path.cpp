@@ -4,7 +4,7 @@
 #include <sstream>
 
 #include "app/robot/robot_model.hpp"
-#include "tumble/errors.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::app::robot {
 

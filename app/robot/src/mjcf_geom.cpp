@@ -3,8 +3,8 @@
 
 #include <sstream>
 
-#include "engine/primitive_shapes.hpp"
-#include "tumble/errors.hpp"
+#include "base/errors.hpp"
+#include "engine/mass/primitive_shapes.hpp"
 
 namespace tumble::app::robot::mjcf {
 namespace {

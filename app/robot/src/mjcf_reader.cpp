@@ -6,9 +6,9 @@
 #include <pugixml.hpp>
 
 #include "app/robot/robot_model.hpp"
+#include "base/errors.hpp"
 #include "element_bytes.hpp"
 #include "mjcf_geom.hpp"
-#include "tumble/errors.hpp"
 
 namespace tumble::app::robot {
 namespace {

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "tumble/errors.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::app::robot::mjcf {
 namespace {

@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "base/errors.hpp"
 #include "element_bytes.hpp"
-#include "tumble/errors.hpp"
 
 namespace tumble::app::robot {
 namespace {

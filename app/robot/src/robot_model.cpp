@@ -4,7 +4,7 @@
 #include <cctype>
 
 #include "app/support/text_file.hpp"
-#include "tumble/errors.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::app::robot {
 namespace {

@@ -3,7 +3,7 @@
 
 #include "app/robot/inertial_xml.hpp"
 #include "app/robot/robot_model.hpp"
-#include "tumble/errors.hpp"
+#include "base/errors.hpp"
 #include "xml_values.hpp"
 
 namespace tumble::app::robot {

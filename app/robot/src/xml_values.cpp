@@ -4,8 +4,8 @@
 #include <charconv>
 #include <cmath>
 
+#include "base/errors.hpp"
 #include "element_bytes.hpp"
-#include "tumble/errors.hpp"
 
 namespace tumble::app::robot {
 namespace {

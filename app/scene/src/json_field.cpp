@@ -4,11 +4,11 @@
 #include <charconv>
 #include <cmath>
 
-#include "engine/input_error.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::app {
 
-using engine::InputError;
+using tumble::InputError;
 namespace {
 using nlohmann::json;  // file-local (a namespace-wide name would shadow `json` members)
 }  // namespace

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <sstream>
 
-#include "engine/mesh_import.hpp"
+#include "engine/import/mesh_import.hpp"
 
 namespace tumble::app {
 namespace {

@@ -7,11 +7,11 @@
 #include <sstream>
 
 #include "app/scene/scene.hpp"
-#include "engine/input_error.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::app {
 
-using engine::InputError;
+using tumble::InputError;
 
 std::vector<std::string> split_option_list(const std::string& text, const char* option) {
   const auto fail = [&] {

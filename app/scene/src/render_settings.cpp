@@ -11,13 +11,13 @@
 #include <string_view>
 
 #include "app/scene/json_field.hpp"
-#include "engine/input_error.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::app {
 namespace {
 
-using engine::InputError;
 using nlohmann::json;
+using tumble::InputError;
 
 using Field = JsonField;
 

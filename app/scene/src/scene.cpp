@@ -18,16 +18,16 @@
 #include "app/scene/shape_field.hpp"
 #include "app/scene/strict_json.hpp"
 #include "app/support/text_file.hpp"
-#include "engine/input_error.hpp"
-#include "engine/integrators.hpp"
-#include "engine/mesh_import.hpp"
-#include "engine/principal_frame.hpp"
+#include "base/errors.hpp"
+#include "engine/dynamics/integrators.hpp"
+#include "engine/import/mesh_import.hpp"
+#include "engine/mass/principal_frame.hpp"
 
 namespace tumble::app {
 namespace {
 
-using engine::InputError;
 using nlohmann::json;
+using tumble::InputError;
 
 using Field = JsonField;
 

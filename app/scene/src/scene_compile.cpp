@@ -7,9 +7,9 @@
 #include <utility>
 
 #include "app/scene/mesh_inspection.hpp"
-#include "engine/input_error.hpp"
-#include "engine/integrators.hpp"
-#include "engine/principal_frame.hpp"
+#include "base/errors.hpp"
+#include "engine/dynamics/integrators.hpp"
+#include "engine/mass/principal_frame.hpp"
 
 namespace tumble::app {
 
@@ -24,7 +24,7 @@ engine::SimulationSettings simulation_settings(const SceneDescription& scene) {
 
 namespace {
 
-using engine::InputError;
+using tumble::InputError;
 
 /// A body's mass and inertia about its centre of mass (body frame: a mesh's own axes), with
 /// the principal frame of its mesh, if it has one.

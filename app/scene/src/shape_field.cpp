@@ -6,7 +6,7 @@
 #include <string_view>
 #include <utility>
 
-#include "engine/input_error.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::app {
 namespace {
@@ -70,7 +70,7 @@ engine::Shape parse_shape(const JsonField& field) {
   const engine::Shape shape = parse_kind(kind, *field.find(kind));
   try {
     engine::validate_shape(shape);  // each number is positive: what is left is its range
-  } catch (const engine::InputError& error) {
+  } catch (const tumble::InputError& error) {
     field.fail(error.what());
   }
   return shape;

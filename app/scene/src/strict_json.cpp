@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "engine/input_error.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::app {
 namespace {
@@ -166,7 +166,7 @@ json parse_strict_json(const std::string& text, const std::string& source) {
     where += ":" + std::to_string(line) + ":" + std::to_string(column);
   }
   if (!failure.path.empty()) where += ": " + failure.path;
-  throw engine::InputError(where + ": " + failure.message);
+  throw tumble::InputError(where + ": " + failure.message);
 }
 
 }  // namespace tumble::app

@@ -13,7 +13,7 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "tumble/errors.hpp"
+#include "base/errors.hpp"
 
 extern char** environ;
 

@@ -8,9 +8,9 @@
 #include <cstring>
 #include <system_error>
 
-#include "engine/input_error.hpp"
-#include "tumble/file_checks.hpp"
-#include "tumble/temporary_path.hpp"
+#include "base/errors.hpp"
+#include "base/file_checks.hpp"
+#include "base/temporary_path.hpp"
 
 namespace tumble::app {
 namespace {
@@ -27,7 +27,7 @@ AtomicFile::AtomicFile(std::filesystem::path path, const std::vector<std::filesy
   remove_stale_temporaries(destination_);
   file_ = std::fopen(temporary_.c_str(), "wb");
   if (file_ == nullptr) {
-    throw engine::InputError("cannot write '" + path_.string() + "': " + std::strerror(errno));
+    throw tumble::InputError("cannot write '" + path_.string() + "': " + std::strerror(errno));
   }
 }
 
@@ -44,7 +44,7 @@ void AtomicFile::fail(const std::string& what) {
   file_ = nullptr;
   std::error_code ignored;
   std::filesystem::remove(temporary_, ignored);
-  throw engine::InputError("cannot write '" + path_.string() + "': " + what + ": " + reason);
+  throw tumble::InputError("cannot write '" + path_.string() + "': " + what + ": " + reason);
 }
 
 void AtomicFile::write(std::string_view bytes) {
@@ -62,7 +62,7 @@ void AtomicFile::commit() {
   std::filesystem::rename(temporary_, destination_, error);
   if (error) {
     std::filesystem::remove(temporary_, error);
-    throw engine::InputError("cannot write '" + path_.string() + "': rename failed");
+    throw tumble::InputError("cannot write '" + path_.string() + "': rename failed");
   }
   committed_ = true;
 }

@@ -7,13 +7,13 @@
 
 #include <sys/stat.h>
 
-#include "engine/input_error.hpp"
-#include "tumble/file_checks.hpp"
-#include "tumble/temporary_path.hpp"
+#include "base/errors.hpp"
+#include "base/file_checks.hpp"
+#include "base/temporary_path.hpp"
 
 namespace tumble::app {
 namespace fs = std::filesystem;
-using engine::InputError;
+using tumble::InputError;
 
 namespace {
 

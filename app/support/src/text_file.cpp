@@ -9,13 +9,13 @@
 #include <cerrno>
 #include <cstring>
 
-#include "engine/input_error.hpp"
-#include "tumble/file_checks.hpp"
+#include "base/errors.hpp"
+#include "base/file_checks.hpp"
 
 namespace tumble::app {
 namespace {
 
-using engine::InputError;
+using tumble::InputError;
 
 /// Closes a descriptor when it goes out of scope.
 struct FdCloser {

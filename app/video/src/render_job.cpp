@@ -4,8 +4,8 @@
 
 #include "app/frame/frame_builder.hpp"
 #include "app/video/render_job.hpp"
-#include "engine/input_error.hpp"
-#include "engine/simulation.hpp"
+#include "base/errors.hpp"
+#include "engine/simulation/simulation.hpp"
 #include "render/renderer.hpp"
 
 namespace tumble::app {
@@ -19,7 +19,7 @@ render::RendererOptions renderer_options(const Antialiasing& antialiasing, int w
   return options;
 }
 
-using engine::InputError;
+using tumble::InputError;
 
 struct RenderJob::Impl {
   // Declaration order is construction order: the builder holds the scene and the renderer.

@@ -10,13 +10,13 @@
 
 #include "app/support/printf_number.hpp"
 #include "app/video/render_job.hpp"
-#include "engine/input_error.hpp"
+#include "base/errors.hpp"
 #include "render/image_sink.hpp"
 
 namespace tumble::app {
 namespace {
 
-using engine::InputError;
+using tumble::InputError;
 
 constexpr double kMaxFrames = 1e8;
 

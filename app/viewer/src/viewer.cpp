@@ -6,10 +6,10 @@
 #include <system_error>
 #include <utility>
 
-#include "engine/input_error.hpp"
+#include "base/errors.hpp"
+#include "base/temporary_path.hpp"
 #include "render/image_sink.hpp"
 #include "render/png_io.hpp"
-#include "tumble/temporary_path.hpp"
 
 namespace tumble::app::viewer {
 namespace {

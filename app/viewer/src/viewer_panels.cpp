@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "app/viewer/viewer_initial_state.hpp"
-#include "engine/input_error.hpp"
-#include "engine/integrators.hpp"
+#include "base/errors.hpp"
+#include "engine/dynamics/integrators.hpp"
 #include "viewer_panels_common.hpp"
 
 namespace tumble::app::viewer {

@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "engine/rigid_body.hpp"
+#include "engine/body/rigid_body.hpp"
 #include "render/overlay_layout.hpp"
 
 namespace tumble::app::viewer {

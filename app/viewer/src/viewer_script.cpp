@@ -10,12 +10,12 @@
 #include "app/scene/render_settings.hpp"
 #include "app/support/text_file.hpp"
 #include "app/viewer/viewer_input.hpp"
-#include "engine/input_error.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::app::viewer {
 namespace {
 
-using engine::InputError;
+using tumble::InputError;
 
 /// A click's release follows its press by this long (s).
 constexpr double kClickSeconds = 0.05;

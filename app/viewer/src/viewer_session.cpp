@@ -8,14 +8,14 @@
 
 #include "app/support/printf_number.hpp"
 #include "app/viewer/viewer_initial_state.hpp"
-#include "engine/input_error.hpp"
-#include "engine/integrators.hpp"
+#include "base/errors.hpp"
+#include "engine/dynamics/integrators.hpp"
 #include "render/overlay_layout.hpp"
 
 namespace tumble::app::viewer {
 namespace {
 
-using engine::InputError;
+using tumble::InputError;
 
 constexpr float kBesideAlpha = 0.55f;
 constexpr std::array<RunColour, kMaxRuns - 1> kBesidePalette = {

@@ -40,7 +40,7 @@
 #include "app/viewer/viewer.hpp"
 #include "app/viewer/viewer_input.hpp"
 #include "app/viewer/viewer_panels.hpp"
-#include "engine/input_error.hpp"
+#include "base/errors.hpp"
 #include "render/imgui_layer.hpp"
 #include "render/overlay_layout.hpp"
 #include "render/renderer.hpp"
@@ -186,7 +186,7 @@ struct WindowPlan {
   std::vector<viewer::ScriptStep> script;
 };
 
-/// Checks every option before anything opens. Throws engine::InputError.
+/// Checks every option before anything opens. Throws tumble::InputError.
 WindowPlan checked_options(const ViewOptions& options) {
   WindowPlan plan;
   if (options.size) std::tie(plan.width, plan.height) = parse_frame_size(*options.size);
@@ -201,7 +201,7 @@ WindowPlan checked_options(const ViewOptions& options) {
   }
   std::error_code error;
   if (!std::filesystem::is_directory(options.output_dir, error)) {
-    throw engine::InputError("--output-dir: '" + options.output_dir.string() +
+    throw tumble::InputError("--output-dir: '" + options.output_dir.string() +
                              "' is not a directory");
   }
   return plan;
@@ -414,7 +414,7 @@ int run_viewer_window(const ViewOptions& options, std::ostream& out, std::ostrea
   WindowPlan plan;
   try {
     plan = checked_options(options);
-  } catch (const engine::InputError& error) {
+  } catch (const tumble::InputError& error) {
     err << "tumble view: " << error.what() << "\n";
     return 1;
   }

@@ -26,8 +26,8 @@
 #include <string>
 #include <vector>
 
+#include "base/errors.hpp"
 #include "render/image.hpp"
-#include "tumble/errors.hpp"
 
 namespace tumble::render {
 

@@ -3,8 +3,8 @@
 
 #include <filesystem>
 
+#include "base/errors.hpp"
 #include "render/image.hpp"
-#include "tumble/errors.hpp"
 
 namespace tumble::render {
 

@@ -14,7 +14,7 @@
 
 #include "app/analysis/bench_report.hpp"
 #include "app/support/file_write.hpp"
-#include "engine/integrators.hpp"
+#include "engine/dynamics/integrators.hpp"
 #include "support/run_command.hpp"
 
 namespace tumble::app {

@@ -8,7 +8,7 @@
 
 #include "app/analysis/stability_runner.hpp"
 #include "app/analysis/stability_suite.hpp"
-#include "engine/integrators.hpp"
+#include "engine/dynamics/integrators.hpp"
 
 namespace tumble::app {
 namespace {

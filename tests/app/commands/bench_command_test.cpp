@@ -15,7 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "engine/integrators.hpp"
+#include "engine/dynamics/integrators.hpp"
 #include "support/csv_reader.hpp"
 #include "support/run_command.hpp"
 #include "support/scene_builder.hpp"

@@ -15,7 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "engine/input_error.hpp"
+#include "base/errors.hpp"
 #include "render/image.hpp"
 #include "render/png_io.hpp"
 #include "support/command_test.hpp"
@@ -84,7 +84,7 @@ TEST(CompareOptionsParsing, IntegratorListNeedsTwoOrMoreKnownDistinctNames) {
   EXPECT_THAT(message("rk4,,exact"), HasSubstr("without empty items"));
   EXPECT_EQ(parse_compare_layout("grid"), CompareLayout::kGrid);
   EXPECT_EQ(parse_compare_layout("overlay"), CompareLayout::kOverlay);
-  EXPECT_THROW(parse_compare_layout("stack"), engine::InputError);
+  EXPECT_THROW(parse_compare_layout("stack"), tumble::InputError);
 }
 
 TEST(CompareGrid, IsNearSquareWithEqualEvenTilesCentred) {
@@ -106,7 +106,7 @@ TEST(CompareGrid, IsNearSquareWithEqualEvenTilesCentred) {
   EXPECT_EQ(five.tile_height, 360);
   EXPECT_EQ(five.left, 1);
   EXPECT_EQ(five.top, 1);
-  EXPECT_THROW(grid_layout(9, 40, 40), engine::InputError);
+  EXPECT_THROW(grid_layout(9, 40, 40), tumble::InputError);
 }
 
 TEST_F(CompareCommand, GridVideoHasTheFrameSizeAndFrameCount) {

@@ -13,8 +13,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "engine/input_error.hpp"
-#include "engine/simulation.hpp"
+#include "base/errors.hpp"
+#include "engine/simulation/simulation.hpp"
 #include "render/png_io.hpp"
 #include "render/renderer.hpp"
 #include "support/command_test.hpp"

@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "engine/primitive_shapes.hpp"
+#include "engine/mass/primitive_shapes.hpp"
 #include "render/png_io.hpp"
 #include "support/command_test.hpp"
 #include "support/image_compare.hpp"

@@ -14,7 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/support/csv_writer.hpp"
-#include "engine/integrators.hpp"
+#include "engine/dynamics/integrators.hpp"
 #include "support/command_test.hpp"
 #include "support/csv_reader.hpp"
 #include "support/run_command.hpp"

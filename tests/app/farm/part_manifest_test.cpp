@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "tumble/errors.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::app {
 namespace {

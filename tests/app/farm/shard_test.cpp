@@ -7,7 +7,7 @@
 #include <cmath>
 #include <vector>
 
-#include "tumble/errors.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::app {
 namespace {

@@ -16,7 +16,7 @@
 #include <sstream>
 
 #include "app/frame/frame_builder.hpp"
-#include "engine/primitive_meshes.hpp"
+#include "engine/geometry/primitive_meshes.hpp"
 #include "render/camera_math.hpp"
 
 namespace tumble::app {

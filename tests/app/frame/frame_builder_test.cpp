@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 
-#include "engine/mass_properties.hpp"
-#include "engine/primitive_meshes.hpp"
+#include "engine/geometry/primitive_meshes.hpp"
+#include "engine/mass/mass_properties.hpp"
 #include "frame_scene_setup.hpp"
 #include "render/camera_math.hpp"
 #include "support/scene_builder.hpp"

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "app/robot/rewrite.hpp"
-#include "tumble/errors.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::app::robot {
 namespace {

@@ -6,7 +6,7 @@
 #include <numbers>
 
 #include "app/robot/robot_model.hpp"
-#include "engine/primitive_shapes.hpp"
+#include "engine/mass/primitive_shapes.hpp"
 #include "support/input_error.hpp"
 
 namespace tumble::app::robot {

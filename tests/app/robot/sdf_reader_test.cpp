@@ -4,9 +4,9 @@
 
 #include "app/robot/link_inertial.hpp"
 #include "app/robot/robot_model.hpp"
+#include "base/errors.hpp"
 #include "robot_fixtures.hpp"
 #include "support/run_command.hpp"
-#include "tumble/errors.hpp"
 
 namespace tumble::app::robot {
 namespace {

@@ -11,7 +11,7 @@
 #include "app/robot/mujoco_oracle.hpp"
 #include "app/robot/rewrite.hpp"
 #include "app/support/text_file.hpp"
-#include "engine/primitive_shapes.hpp"
+#include "engine/mass/primitive_shapes.hpp"
 #include "support/stl_writer.hpp"
 
 namespace tumble::app::robot {

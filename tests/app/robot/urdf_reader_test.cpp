@@ -9,9 +9,9 @@
 #include "app/robot/link_inertial.hpp"
 #include "app/robot/robot_model.hpp"
 #include "app/scene/mesh_inspection.hpp"
+#include "base/errors.hpp"
 #include "robot_fixtures.hpp"
 #include "support/run_command.hpp"
-#include "tumble/errors.hpp"
 
 namespace tumble::app::robot {
 namespace {

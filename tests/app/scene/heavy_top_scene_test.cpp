@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "app/scene/scene.hpp"
-#include "engine/lagrange_top.hpp"
-#include "engine/reference_motion.hpp"
-#include "engine/simulation.hpp"
+#include "engine/exact/lagrange_top.hpp"
+#include "engine/simulation/reference_motion.hpp"
+#include "engine/simulation/simulation.hpp"
 
 namespace tumble::app {
 namespace {

@@ -6,7 +6,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
-#include "engine/input_error.hpp"
+#include "base/errors.hpp"
 #include "support/input_error.hpp"
 
 namespace tumble::app {

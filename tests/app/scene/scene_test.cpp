@@ -14,7 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "engine/input_error.hpp"
+#include "base/errors.hpp"
 #include "support/input_error.hpp"
 #include "support/run_command.hpp"
 #include "support/scene_builder.hpp"

@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/scene/scene.hpp"
-#include "engine/input_error.hpp"
+#include "base/errors.hpp"
 #include "support/input_error.hpp"
 #include "support/scene_builder.hpp"
 

@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
+#include "base/temporary_path.hpp"
 #include "support/csv_reader.hpp"
 #include "support/input_error.hpp"
 #include "support/run_command.hpp"
-#include "tumble/temporary_path.hpp"
 
 namespace tumble::app {
 namespace {

@@ -8,9 +8,9 @@
 #include <fstream>
 #include <string>
 
+#include "base/temporary_path.hpp"
 #include "support/input_error.hpp"
 #include "support/run_command.hpp"
-#include "tumble/temporary_path.hpp"
 
 namespace tumble::app {
 namespace {

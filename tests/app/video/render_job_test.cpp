@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "engine/simulation.hpp"
+#include "engine/simulation/simulation.hpp"
 #include "render/renderer.hpp"
 #include "support/command_test.hpp"
 #include "support/input_error.hpp"

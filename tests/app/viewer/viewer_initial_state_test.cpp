@@ -12,7 +12,7 @@
 #include <Eigen/Geometry>
 
 #include "app/scene/scene.hpp"
-#include "engine/rigid_body.hpp"
+#include "engine/body/rigid_body.hpp"
 
 namespace tumble::app::viewer {
 namespace {

@@ -7,7 +7,7 @@
 #include <memory>
 
 #include "app/viewer/viewer_session.hpp"
-#include "engine/primitive_meshes.hpp"
+#include "engine/geometry/primitive_meshes.hpp"
 #include "render/renderer.hpp"
 #include "support/run_command.hpp"
 #include "support/stl_writer.hpp"

@@ -15,8 +15,8 @@
 
 #include "app/scene/mesh_inspection.hpp"
 #include "app/viewer/viewer_initial_state.hpp"
-#include "engine/input_error.hpp"
-#include "engine/simulation.hpp"
+#include "base/errors.hpp"
+#include "engine/simulation/simulation.hpp"
 #include "render/renderer.hpp"
 #include "support/command_test.hpp"
 #include "support/scene_builder.hpp"

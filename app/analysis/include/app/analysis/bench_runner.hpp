@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "app/analysis/error_measures.hpp"
-#include "engine/integrators.hpp"
-#include "engine/rigid_body.hpp"
-#include "engine/simulation.hpp"
+#include "engine/body/rigid_body.hpp"
+#include "engine/dynamics/integrators.hpp"
+#include "engine/simulation/simulation.hpp"
 
 namespace tumble::app {
 

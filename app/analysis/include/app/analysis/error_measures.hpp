@@ -15,8 +15,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "engine/rigid_body.hpp"
-#include "engine/simulation.hpp"
+#include "engine/body/rigid_body.hpp"
+#include "engine/simulation/simulation.hpp"
 
 namespace tumble::app {
 
@@ -54,7 +54,7 @@ struct Reference {
 };
 
 /// The scene's engine::ReferenceMotion on the grid, with its check run when it is dopri.
-/// Throws engine::InputError when the reference blows up.
+/// Throws tumble::InputError when the reference blows up.
 Reference make_reference(const std::vector<engine::BodyModel>& bodies,
                          const std::vector<engine::BodyState>& initial, const SampleGrid& grid);
 

@@ -23,7 +23,7 @@ struct HeatMapPanel {
 std::string heat_map_script(const std::vector<HeatMapPanel>& panels,
                             const std::filesystem::path& png, const std::filesystem::path& svg);
 
-/// Writes the script beside `png`, runs gnuplot on it and removes it. Throws engine::InputError
+/// Writes the script beside `png`, runs gnuplot on it and removes it. Throws tumble::InputError
 /// with gnuplot's first error line when gnuplot fails or is missing, WriteError naming the file
 /// when the script or a picture could not be written whole (a full disk).
 void draw_heat_map(const std::vector<HeatMapPanel>& panels, const std::filesystem::path& png,

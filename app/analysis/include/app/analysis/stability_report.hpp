@@ -12,7 +12,7 @@
 #include "app/analysis/stability_plot.hpp"
 #include "app/analysis/stability_runner.hpp"
 #include "app/analysis/stability_suite.hpp"
-#include "engine/integrators.hpp"
+#include "engine/dynamics/integrators.hpp"
 
 namespace tumble::app {
 

@@ -12,8 +12,8 @@
 
 #include "app/analysis/stability_classes.hpp"
 #include "app/analysis/stability_suite.hpp"
-#include "engine/integrators.hpp"
-#include "engine/rigid_body.hpp"
+#include "engine/body/rigid_body.hpp"
+#include "engine/dynamics/integrators.hpp"
 
 namespace tumble::app {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/rigid_body.hpp"
+#include "engine/body/rigid_body.hpp"
 
 namespace tumble::app {
 
@@ -47,11 +47,11 @@ struct SuiteListing {
 };
 std::vector<SuiteListing> stability_suite_listing();
 
-/// The built-in suite `name`. Throws engine::InputError ("--suite: unknown suite ...").
+/// The built-in suite `name`. Throws tumble::InputError ("--suite: unknown suite ...").
 StabilitySuite stability_suite(const std::string& name);
 
 /// A scene file as a case: its bodies, its duration, and `dts` or the scene's dt x {1, 2, 4, 8}.
-/// Throws engine::InputError naming the file.
+/// Throws tumble::InputError naming the file.
 StabilityCase scene_case(const std::filesystem::path& file,
                          const std::optional<std::vector<double>>& dts);
 

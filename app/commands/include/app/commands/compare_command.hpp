@@ -42,10 +42,10 @@ struct CompareOptions : VideoOptions {
 CLI::App& add_compare_command(CLI::App& cli, CompareOptions& options);
 
 /// Splits and checks --integrators: known names, at least two, no repeats. Throws
-/// engine::InputError naming --integrators.
+/// tumble::InputError naming --integrators.
 std::vector<std::string> comparison_integrators(const std::string& text);
 
-/// Parses --layout ("grid" or "overlay"). Throws engine::InputError naming --layout.
+/// Parses --layout ("grid" or "overlay"). Throws tumble::InputError naming --layout.
 CompareLayout parse_compare_layout(const std::string& text);
 
 /// Where the panels of a grid go in a frame.
@@ -60,7 +60,7 @@ struct GridLayout {
 
 /// A near-square grid for `panels` panels in a `width` x `height` frame: ceil(sqrt(n))
 /// columns and as many rows as needed (2 -> 2x1, 3 and 4 -> 2x2, 5 and 6 -> 3x2), equal tiles
-/// of even sides. Throws engine::InputError naming --size when a tile would be under 16 pixels.
+/// of even sides. Throws tumble::InputError naming --size when a tile would be under 16 pixels.
 GridLayout grid_layout(std::size_t panels, int width, int height);
 
 /// Runs the command. Returns 0, 1 (input, output or ffmpeg error: one line on `err`, nothing

@@ -15,7 +15,7 @@
 #include <ostream>
 #include <string_view>
 
-#include "tumble/errors.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::app {
 

@@ -11,7 +11,7 @@
 #include <Eigen/Core>
 
 #include "app/robot/inertial_xml.hpp"
-#include "engine/mesh_analysis.hpp"
+#include "engine/mass/mesh_analysis.hpp"
 
 namespace CLI {
 class App;

@@ -9,7 +9,7 @@
 
 #include "app/scene/render_settings.hpp"
 #include "app/scene/scene.hpp"
-#include "engine/simulation.hpp"
+#include "engine/simulation/simulation.hpp"
 #include "render/draw_list.hpp"
 #include "render/renderer.hpp"
 

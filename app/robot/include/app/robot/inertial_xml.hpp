@@ -13,7 +13,7 @@
 #include <Eigen/Core>
 
 #include "app/robot/robot_model.hpp"
-#include "engine/mass_properties.hpp"
+#include "engine/mass/mass_properties.hpp"
 
 namespace tumble::app::robot {
 

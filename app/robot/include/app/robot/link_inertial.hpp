@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "app/robot/robot_model.hpp"
-#include "engine/mass_properties.hpp"
+#include "engine/mass/mass_properties.hpp"
 
 namespace tumble::app::robot {
 

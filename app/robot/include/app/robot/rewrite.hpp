@@ -7,7 +7,7 @@
 
 #include "app/robot/inertial_xml.hpp"
 #include "app/robot/robot_model.hpp"
-#include "engine/mass_properties.hpp"
+#include "engine/mass/mass_properties.hpp"
 
 namespace tumble::app::robot {
 

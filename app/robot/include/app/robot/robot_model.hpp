@@ -13,8 +13,8 @@
 
 #include <Eigen/Geometry>
 
-#include "engine/mass_properties.hpp"
-#include "engine/primitive_shapes.hpp"
+#include "engine/mass/mass_properties.hpp"
+#include "engine/mass/primitive_shapes.hpp"
 
 namespace tumble::app::robot {
 

@@ -20,7 +20,7 @@ std::string describe(const nlohmann::json& value);
 
 /// One value of a JSON document and where it sits (file and JSON path, e.g.
 /// `bodies[0].angular_velocity`), so that every error can name both. Every accessor checks
-/// the type and range and throws engine::InputError "FILE: PATH: expected ..., got ...".
+/// the type and range and throws tumble::InputError "FILE: PATH: expected ..., got ...".
 class JsonField {
  public:
   JsonField(const nlohmann::json& value, std::string path, const std::string& file);

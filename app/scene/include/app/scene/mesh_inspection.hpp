@@ -7,12 +7,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "engine/mesh_analysis.hpp"
-#include "engine/triangle_mesh.hpp"
+#include "engine/geometry/triangle_mesh.hpp"
+#include "engine/mass/mesh_analysis.hpp"
 
 namespace tumble::app {
 
-/// Imports and analyses one mesh file (throws engine::InputError naming the file). With
+/// Imports and analyses one mesh file (throws tumble::InputError naming the file). With
 /// `imported`, also hands back the mesh as read (file axes, before the analysis welds, drops
 /// or flips anything), for drawing it without reading the file again.
 engine::MeshReport inspect_file(const std::filesystem::path& file, const engine::MassOptions& mass,

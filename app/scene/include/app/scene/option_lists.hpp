@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/integrators.hpp"
+#include "engine/dynamics/integrators.hpp"
 
 namespace tumble::app {
 

@@ -95,7 +95,7 @@ struct RenderSettings {
 };
 
 /// Reads a scene's `render` object (all keys optional; unknown keys, wrong types and
-/// impossible values throw engine::InputError naming `source` and the JSON path, e.g.
+/// impossible values throw tumble::InputError naming `source` and the JSON path, e.g.
 /// `render.camera.mode`). `body_names` resolves body references by name.
 RenderSettings parse_render_settings(const nlohmann::json& render, const std::string& source,
                                      const std::vector<std::string>& body_names);

@@ -7,7 +7,7 @@
 ///  - compile_scene() imports meshes, computes mass properties, moves everything to the
 ///    principal frame about each body's rotation centre and returns engine bodies and states.
 ///
-/// Every error is an engine::InputError whose one-line message starts with the scene file and
+/// Every error is an tumble::InputError whose one-line message starts with the scene file and
 /// the JSON path of the offending value (`scene.json: bodies[0].angular_velocity: ...`) and
 /// says what was expected. The format is documented at parse_scene().
 
@@ -21,11 +21,11 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
-#include "engine/mesh_analysis.hpp"
-#include "engine/primitive_shapes.hpp"
-#include "engine/rigid_body.hpp"
-#include "engine/simulation.hpp"
-#include "engine/triangle_mesh.hpp"
+#include "engine/body/rigid_body.hpp"
+#include "engine/geometry/triangle_mesh.hpp"
+#include "engine/mass/mesh_analysis.hpp"
+#include "engine/mass/primitive_shapes.hpp"
+#include "engine/simulation/simulation.hpp"
 
 namespace tumble::app {
 
@@ -79,7 +79,7 @@ struct SceneDescription {
 };
 
 /// Parses and validates scene JSON text. `file` names the source in messages and anchors
-/// relative mesh paths. JSON may carry // and /* */ comments. Throws engine::InputError.
+/// relative mesh paths. JSON may carry // and /* */ comments. Throws tumble::InputError.
 ///
 /// Top level: "duration", "dt" (required, positive, finite, dt <= duration), "bodies"
 /// (required, non-empty array); optional "name" (default: the file's stem), "integrator"
@@ -109,7 +109,7 @@ std::optional<std::string> step_problem(double dt, double duration);
 /// The integrator names, comma-separated, for messages.
 std::string integrator_names();
 
-/// Command-line overrides shared by the commands. Each throws engine::InputError naming the
+/// Command-line overrides shared by the commands. Each throws tumble::InputError naming the
 /// option: `--integrator` must name a known integrator; numbers must be positive and finite.
 void override_integrator(SceneDescription& scene, const std::string& name);
 double positive_option(double value, const char* option);
@@ -136,7 +136,7 @@ struct CompiledScene {
 inline constexpr int kShapeSegments = 64;
 
 /// Imports meshes, computes mass properties about each rotation centre and builds the initial
-/// states. Mesh errors come back with the body's JSON path in front. Throws engine::InputError.
+/// states. Mesh errors come back with the body's JSON path in front. Throws tumble::InputError.
 /// With `keep_geometry`, the meshes are kept for drawing (see CompiledScene::geometry).
 CompiledScene compile_scene(const SceneDescription& scene, bool keep_geometry = false);
 

@@ -11,12 +11,12 @@
 /// Conventions and formulas: engine/include/engine/primitive_shapes.hpp, engine/PHYSICS.md §9.
 
 #include "app/scene/json_field.hpp"
-#include "engine/primitive_shapes.hpp"
+#include "engine/mass/primitive_shapes.hpp"
 
 namespace tumble::app {
 
 /// Reads and validates a shape: exactly one known kind, its members all present, known and
-/// positive numbers, and a volume and moments a double can hold. Throws engine::InputError
+/// positive numbers, and a volume and moments a double can hold. Throws tumble::InputError
 /// "FILE: PATH.kind.member: expected ..." (unknown keys and wrong types as JsonField does).
 engine::Shape parse_shape(const JsonField& field);
 

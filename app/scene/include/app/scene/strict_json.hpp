@@ -8,7 +8,7 @@
 
 namespace tumble::app {
 
-/// Parses `text` (JSON with // and /* */ comments). Throws engine::InputError with a one-line
+/// Parses `text` (JSON with // and /* */ comments). Throws tumble::InputError with a one-line
 /// message starting with `source`:
 ///  - syntax errors: "SOURCE:LINE:COLUMN: malformed JSON: reason";
 ///  - numbers beyond the range of a double (1e999, which JSON allows but nothing can hold):

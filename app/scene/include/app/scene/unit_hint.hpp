@@ -6,7 +6,7 @@
 
 #include <Eigen/Core>
 
-#include "engine/mesh_analysis.hpp"
+#include "engine/mass/mesh_analysis.hpp"
 
 namespace tumble::app {
 

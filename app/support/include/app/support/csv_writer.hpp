@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/rigid_body.hpp"
+#include "engine/body/rigid_body.hpp"
 
 namespace tumble::app {
 
@@ -21,7 +21,7 @@ class AtomicFile {
  public:
   /// Creates the temporary `.NAME.tmp-PID` beside `path` (beside its target when `path` is a
   /// symbolic link to a regular file: the target is replaced, the link stays), first removing
-  /// such temporaries of dead processes. Throws engine::InputError naming `path` when it cannot
+  /// such temporaries of dead processes. Throws tumble::InputError naming `path` when it cannot
   /// be written (missing folder, no permission), when it is anything but a new name or a
   /// regular file (a directory, a device such as /dev/full, a FIFO: never replaced), or when it
   /// is the same file as one of `inputs` (the command's scene and meshes).
@@ -31,9 +31,9 @@ class AtomicFile {
   AtomicFile(const AtomicFile&) = delete;
   AtomicFile& operator=(const AtomicFile&) = delete;
 
-  /// Appends bytes. Throws engine::InputError naming the file on a write error (disk full).
+  /// Appends bytes. Throws tumble::InputError naming the file on a write error (disk full).
   void write(std::string_view bytes);
-  /// Flushes, closes and renames into place. Throws engine::InputError on failure.
+  /// Flushes, closes and renames into place. Throws tumble::InputError on failure.
   void commit();
 
   const std::filesystem::path& path() const { return path_; }

@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-#include "tumble/errors.hpp"
+#include "base/errors.hpp"
 
 namespace tumble::app {
 

@@ -23,12 +23,12 @@ struct OutputFolderKind {
 /// reports, CSVs and plots (.md, .csv, .png, .svg files); anything else is refused, since
 /// replacing it would delete the user's files. A symbolic link to a folder is written through
 /// (the link stays). Temporaries of dead processes (`.DIR.tmp-PID` of a killed run) are removed
-/// first. Throws engine::InputError naming -o and the folder.
+/// first. Throws tumble::InputError naming -o and the folder.
 std::filesystem::path start_output_folder(const std::filesystem::path& dir,
                                           const OutputFolderKind& kind);
 
 /// Moves the finished .DIR.tmp-PID into place, replacing an earlier DIR (moved aside first and
-/// removed last). Throws engine::InputError naming -o and the folder.
+/// removed last). Throws tumble::InputError naming -o and the folder.
 void finish_output_folder(const std::filesystem::path& tmp, const std::filesystem::path& dir);
 
 /// The error of a failed write into the temporary folder `tmp` of `dir`, naming the file by the

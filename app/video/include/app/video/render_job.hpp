@@ -73,14 +73,14 @@ std::size_t frame_count(double duration, double fps, double time_scale);
 double frame_time(std::size_t frame, double fps, double time_scale);
 
 /// Checks a --font-scale value (kMinFontScale to kMaxFontScale, as render.font_scale) and
-/// returns it. Throws engine::InputError naming --font-scale (render, compare and view).
+/// returns it. Throws tumble::InputError naming --font-scale (render, compare and view).
 double font_scale_option(double value);
 
-/// Parses "WIDTHxHEIGHT" (whole numbers, 1 to 8192). Throws engine::InputError naming --size.
+/// Parses "WIDTHxHEIGHT" (whole numbers, 1 to 8192). Throws tumble::InputError naming --size.
 std::pair<int, int> parse_frame_size(const std::string& text);
 
 /// Parses "A:B" (either end may be left out: ":B" is 0:B, "A:" is A:total) and checks
-/// 0 <= A < B <= total. Throws engine::InputError naming --frames.
+/// 0 <= A < B <= total. Throws tumble::InputError naming --frames.
 FrameRange parse_frame_range(const std::string& text, std::size_t total);
 
 /// Everything decided before any mesh is read or any output opened.
@@ -91,7 +91,7 @@ struct RenderPlan {
   FrameRange frames;  ///< the frames to write
 };
 
-/// Loads the scene and checks every option. Throws engine::InputError.
+/// Loads the scene and checks every option. Throws tumble::InputError.
 RenderPlan plan_render(const RenderOptions& options);
 
 /// A running render: the compiled scene, its simulation, the renderer and the frame builder.
@@ -99,16 +99,16 @@ RenderPlan plan_render(const RenderOptions& options);
 /// range of frames is identical to the same frames of a full render.
 class RenderJob {
  public:
-  /// Imports the meshes and creates the renderer. Throws engine::InputError (scene) or
+  /// Imports the meshes and creates the renderer. Throws tumble::InputError (scene) or
   /// std::runtime_error (no GL context).
   explicit RenderJob(const RenderPlan& plan);
   /// Same, drawing with `renderer` (the caller's, which must outlive the job; its size is the
   /// caller's business): several jobs can share one GL context, and their draw lists' meshes
-  /// are valid in it. Throws engine::InputError (scene).
+  /// are valid in it. Throws tumble::InputError (scene).
   RenderJob(const RenderPlan& plan, render::Renderer& renderer);
   /// Same, with the scene already compiled (from a plan that differs from this one at most in
   /// its simulation settings, which are taken from `plan`): runs of one scene under several
-  /// integrators read its meshes once. Throws engine::InputError (an integrator that cannot
+  /// integrators read its meshes once. Throws tumble::InputError (an integrator that cannot
   /// take a body).
   RenderJob(const RenderPlan& plan, const CompiledScene& compiled, render::Renderer& renderer);
   ~RenderJob();

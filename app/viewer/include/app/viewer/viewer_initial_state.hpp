@@ -8,7 +8,7 @@
 #include <cstddef>
 
 #include "app/scene/scene.hpp"
-#include "engine/rigid_body.hpp"
+#include "engine/body/rigid_body.hpp"
 
 namespace tumble::app::viewer {
 

@@ -210,11 +210,11 @@ struct ScriptStep {
 ///   screenshot PATH      writes what the window shows to PATH (PNG; rest of the line)
 ///   resize W H           asks for a W x H window (whole pixels, 1 to 8192)
 ///   quit                 closes the viewer
-/// Steps are returned sorted by time (stable). Throws engine::InputError naming `file`, the
+/// Steps are returned sorted by time (stable). Throws tumble::InputError naming `file`, the
 /// line number and what was expected, e.g. `run.txt:3: expected a number for X, got "a"`.
 std::vector<ScriptStep> parse_script(const std::string& text, const std::filesystem::path& file);
 
-/// Reads and parses a script file (throws engine::InputError naming the file when unreadable).
+/// Reads and parses a script file (throws tumble::InputError naming the file when unreadable).
 std::vector<ScriptStep> load_script(const std::filesystem::path& file);
 
 /// Hands out a script's steps as the clock passes their times.

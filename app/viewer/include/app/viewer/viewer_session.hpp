@@ -26,7 +26,7 @@
 #include "app/scene/render_settings.hpp"
 #include "app/scene/scene.hpp"
 #include "app/viewer/viewer_camera.hpp"
-#include "engine/simulation.hpp"
+#include "engine/simulation/simulation.hpp"
 #include "render/draw_list.hpp"
 #include "render/renderer.hpp"
 

@@ -1,0 +1,61 @@
+#pragma once
+// Exact intersection tests between and within the parts of a closed mesh (`tumble inspect`).
+//
+// Private to the engine; the one translation unit that includes CGAL is part_overlap.cpp (CGAL
+// compiles slowly, so no other file sees it). All decisions use CGAL's exact predicates
+// (Exact_predicates_inexact_constructions_kernel), so they do not depend on the scale of the
+// mesh or on the order of its parts; only the volumes reported are rounded.
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "engine/geometry/triangle_mesh.hpp"
+
+namespace tumble::engine::detail {
+
+/// What was found within one part, or between two whose surfaces meet.
+enum class OverlapKind {
+  kSelfIntersection,  ///< faces of one part cross (or overlap in one plane, facing one way)
+  kDuplicate,         ///< every face of the part is there twice, same place and orientation
+  kCancelling,        ///< the part is a surface and its mirror image: no volume
+  kCross,             ///< the surfaces of two parts cross: their volumes overlap
+  kUndecided,         ///< the surfaces of two parts meet; touch or cross could not be decided
+};
+
+struct OverlapFinding {
+  OverlapKind kind = OverlapKind::kCross;
+  std::uint32_t first = 0;              ///< part, 0-based
+  std::uint32_t second = 0;             ///< the other part (equal to `first` within a part)
+  std::size_t face_pairs = 0;           ///< pairs of faces that cross or repeat
+  std::optional<double> shared_volume;  ///< m^3 counted twice, where it could be computed
+  /// kCross of two parts facing opposite ways: `second` (the smaller, an inward cavity or an
+  /// outward part in an inward shell) reaches `shared_volume` outside `first`.
+  bool cavity = false;
+  /// kCancelling without exact mirror pairs: the faces cross (`face_pairs`) and the part's
+  /// signed volume cancels to 1e-6 of the volume its faces span.
+  bool approximate = false;
+};
+
+/// Containment between two parts whose surfaces do not cross.
+struct PartNesting {
+  std::uint32_t inner = 0;
+  std::uint32_t outer = 0;
+  int winding = 0;  ///< winding number of `outer`'s faces, as wound, around `inner`
+};
+
+struct PartOverlaps {
+  std::vector<OverlapFinding> findings;  ///< within parts by part, then pairs of parts in order
+  std::vector<PartNesting> nesting;      ///< every part pair with a non-zero winding
+};
+
+/// Finds self-intersections and repeated faces within each part and, between parts whose
+/// bounding boxes overlap, whether their surfaces cross, only touch (a shared face plane, edge
+/// or point: zero-volume contact, not an overlap), or nest. `triangle_part` numbers the parts
+/// 0..parts-1; the mesh is welded, closed and consistently wound per part. Pairs are found by
+/// box intersection (CGAL::box_intersection_d), not by testing every pair of triangles.
+PartOverlaps find_part_overlaps(const TriangleMesh& mesh,
+                                const std::vector<std::uint32_t>& triangle_part, std::size_t parts);
+
+}  // namespace tumble::engine::detail

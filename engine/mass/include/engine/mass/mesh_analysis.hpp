@@ -1,0 +1,65 @@
+#pragma once
+/// @file From a raw triangle soup to checked mass properties: the `tumble inspect` pipeline.
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "engine/geometry/triangle_mesh.hpp"
+#include "engine/mass/mass_properties.hpp"
+#include "engine/mass/principal_frame.hpp"
+
+namespace tumble::engine {
+
+/// How to turn a mesh's geometry into matter.
+struct MassOptions {
+  std::optional<double> density;  ///< kg/m^3; the default is 1000 (water)
+  std::optional<double> mass;     ///< kg, total; excludes `density`
+  /// File units to metres per axis (0.001 for millimetres), as URDF's <mesh scale="x y z">.
+  /// Each factor is finite and non-zero; a negative one mirrors along its axis, and when the
+  /// product is negative the winding is reversed so the faces still point outward.
+  Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+  std::optional<double> shell_thickness;  ///< m; thin-shell (area-weighted) mode when set
+  /// Accept parts that overlap, intersect themselves or repeat (their shared volume then
+  /// counts twice, and a warning says how much); by default they are an error.
+  bool allow_overlap = false;
+};
+
+/// Everything `tumble inspect` reports about one mesh, in SI units after scaling.
+struct MeshReport {
+  std::string source;
+  std::size_t input_triangles = 0;       ///< as read
+  std::size_t triangles = 0;             ///< used (degenerate ones skipped)
+  std::size_t vertices = 0;              ///< after welding
+  std::size_t welded_vertices = 0;       ///< merged away by welding
+  std::size_t degenerate_triangles = 0;  ///< skipped
+  std::size_t parts = 0;
+  std::size_t cavities = 0;  ///< inward-facing parts inside another part
+  std::size_t boundary_edges = 0;
+  std::size_t inconsistent_edges = 0;
+  std::size_t non_manifold_edges = 0;
+  bool watertight = false;
+  bool shell = false;
+  bool flipped = false;            ///< all faces were inverted and have been flipped
+  double thickness = 0.0;          ///< m (shell mode)
+  double volume = 0.0;             ///< m^3 (shell mode: area times thickness)
+  double area = 0.0;               ///< m^2 (shell mode only)
+  double density = 0.0;            ///< kg/m^3
+  MassProperties mass_properties;  ///< inertia about the centre of mass, file axes
+  PrincipalFrame principal;
+  Eigen::Vector3d bounds_min = Eigen::Vector3d::Zero();
+  Eigen::Vector3d bounds_max = Eigen::Vector3d::Zero();
+  std::vector<std::string> warnings;  ///< things the user should know and may want to fix
+};
+
+/// Validates options, scales, welds, checks and integrates `mesh`. Throws InputError with a
+/// one-line message starting with `source` on anything that is not a valid rigid body.
+/// `distinct_positions` says the caller knows no two vertices share a position (as
+/// import_mesh reports for single-mesh files), which skips the weld.
+MeshReport analyze_mesh(TriangleMesh mesh, const MassOptions& options, const std::string& source,
+                        bool distinct_positions = false);
+
+}  // namespace tumble::engine

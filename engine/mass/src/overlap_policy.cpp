@@ -1,0 +1,103 @@
+// Overlap findings as one-line errors or warnings (overlap_policy.hpp).
+#include "overlap_policy.hpp"
+
+#include <sstream>
+
+#include "base/errors.hpp"
+
+namespace tumble::engine::detail {
+namespace {
+
+std::string volume_text(const std::optional<double>& volume) {
+  if (!volume) return "unknown: the exact Boolean of the two could not be computed";
+  std::ostringstream out;
+  out.precision(6);
+  out << *volume << " m^3";
+  return out.str();
+}
+
+}  // namespace
+
+std::string OverlapPolicy::part(std::uint32_t index) const {
+  return "part " + std::to_string(index + 1) + " of " + std::to_string(parts_);
+}
+
+std::string OverlapPolicy::describe(const OverlapFinding& f) const {
+  const std::string pair = "parts " + std::to_string(f.first + 1) + " and " +
+                           std::to_string(f.second + 1) + " of " + std::to_string(parts_);
+  const std::string pairs =
+      std::to_string(f.face_pairs) + " pair" + (f.face_pairs == 1 ? "" : "s") + " of faces";
+  switch (f.kind) {
+    case OverlapKind::kSelfIntersection:
+      return part(f.first) + " intersects itself (" + pairs +
+             " cross or overlap), so the volume it encloses is not well defined: where its "
+             "surface passes through itself, matter " +
+             counts_twice();
+    case OverlapKind::kDuplicate:
+      return part(f.first) + " repeats itself: the same surface twice at the same place (" + pairs +
+             " repeated with the same orientation), so its volume (" +
+             volume_text(f.shared_volume) + ") " + counts_twice();
+    case OverlapKind::kCancelling:
+      if (f.approximate) {
+        return part(f.first) +
+               " is a surface and an inverted copy of it at the same place, apart from "
+               "rounding (its faces cross at " +
+               pairs +
+               " and its signed volume cancels to 1e-6 of theirs): the two cancel, so "
+               "it adds no volume";
+      }
+      return part(f.first) + " is a surface and its mirror image at the same place (" + pairs +
+             " repeated with opposite orientations): the two cancel, so it adds no volume";
+    case OverlapKind::kCross:
+      if (f.cavity) {
+        return pair + " overlap (their surfaces cross): part " + std::to_string(f.second + 1) +
+               " faces the other way, as a cavity would, but reaches outside part " +
+               std::to_string(f.first + 1) + ", so a volume (" + volume_text(f.shared_volume) +
+               ") that is not matter " + (allow_ ? "is" : "would be") + " taken out";
+      }
+      return pair + " overlap (their surfaces cross), so their shared volume (" +
+             volume_text(f.shared_volume) + ") " + counts_twice();
+    case OverlapKind::kUndecided:
+      break;
+  }
+  return pair + ": their surfaces meet (" + pairs +
+         "), and whether their volumes overlap could not be decided (a part is not a "
+         "2-manifold, or the exact Boolean failed), so their shared volume may count twice";
+}
+
+void OverlapPolicy::findings(const PartOverlaps& overlaps) {
+  for (const OverlapFinding& finding : overlaps.findings) {
+    if (finding.kind != OverlapKind::kCancelling) {
+      problems_.push_back(describe(finding));
+      continue;
+    }
+    notes_.push_back(describe(finding));
+    if (cancelled_.empty()) cancelled_ = notes_.back();
+  }
+}
+
+void OverlapPolicy::nested(std::uint32_t inner, double volume) {
+  problems_.push_back(part(inner) +
+                      " lies inside another part with the same orientation, so its volume (" +
+                      volume_text(volume) + ") " + counts_twice() +
+                      " (reverse its winding if it is meant as a cavity)");
+}
+
+void OverlapPolicy::settle(MeshReport& report) {
+  for (std::string& note : notes_) report.warnings.push_back(std::move(note));
+  notes_.clear();
+  if (problems_.empty()) return;
+  if (!allow_) {
+    std::string message = source_ + ": " + problems_.front();
+    if (problems_.size() > 1) {
+      message += " (and " + std::to_string(problems_.size() - 1) + " more overlap" +
+                 (problems_.size() == 2 ? "" : "s") + ")";
+    }
+    throw InputError(message +
+                     "; give --allow-overlap to accept it (\"allow_overlap\": true in a scene)");
+  }
+  for (std::string& problem : problems_) report.warnings.push_back(std::move(problem));
+  problems_.clear();
+}
+
+}  // namespace tumble::engine::detail
