@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Reports functions longer than --max-function lines and source files longer than --max-file
-lines in the project's own C++ (app, engine, render, assets/tools). Exit 1 when any is found.
+lines in the project's own C++ (app, base, engine, render, assets/tools). Exit 1 when any is found.
 
 Functions are found by brace matching on the source with comments, strings and character
 literals blanked out: a '{' opens a function body when it is not inside another function and
@@ -128,7 +128,7 @@ def functions(path: pathlib.Path):
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--max-function", type=int, default=80)
-    parser.add_argument("--max-file", type=int, default=450)
+    parser.add_argument("--max-file", type=int, default=800)
     parser.add_argument("paths", nargs="*", help="files or folders (default: the project's own)")
     args = parser.parse_args()
     top = pathlib.Path(__file__).resolve().parent.parent
