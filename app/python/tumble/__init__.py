@@ -1,0 +1,116 @@
+"""tumble: rigid bodies whose mass properties come from real meshes.
+
+The functions here are the library calls the `tumble` command line makes, with numpy arrays in
+and out (docs/python.md). Units are SI (metres, kilograms, seconds); quaternions are
+(w, x, y, z); principal axes are the COLUMNS of a rotation matrix. Bad input raises
+tumble.InputError (a ValueError) with the command line's one-line message. Nothing is printed:
+warnings come back in the results.
+
+Rendering runs the `tumble` executable in a child process (render, compare), so the module
+never loads OpenGL.
+"""
+
+import json
+import os
+import pathlib
+import subprocess
+import tempfile
+
+from ._tumble import *  # noqa: F401,F403  (the compiled library calls)
+from ._tumble import InputError, _executable_candidates
+
+__all__ = [
+    "InputError",
+    "RunBlewUp",
+    "MassProperties",
+    "inspect",
+    "mass_properties",
+    "primitive",
+    "render",
+    "compare",
+    "executable",
+]
+
+
+class RunBlewUp(RuntimeError):
+    """A render or compare whose simulation blew up (exit status 3): its output was still
+    written, at `output`, and the message says when and how."""
+
+    def __init__(self, message, output):
+        super().__init__(message)
+        self.output = output
+
+
+def executable():
+    """The `tumble` executable render and compare run: $TUMBLE_EXECUTABLE when set, else the
+    one of the build tree this module was built in, else the installed one."""
+    given = os.environ.get("TUMBLE_EXECUTABLE")
+    candidates = ([given] if given else []) + list(_executable_candidates())
+    for candidate in candidates:
+        if candidate and os.access(candidate, os.X_OK) and os.path.isfile(candidate):
+            return candidate
+    raise FileNotFoundError("the tumble executable was not found (looked for " +
+                            ", ".join(c for c in candidates if c) + ")")
+
+
+def _option_flags(options):
+    """Keyword arguments as command-line options: size="640x360" -> --size 640x360, True -> the
+    bare flag, False and None -> left out, a list -> comma-separated."""
+    flags = []
+    for name, value in options.items():
+        flag = "--" + name.replace("_", "-")
+        if value is None or value is False:
+            continue
+        if value is True:
+            flags.append(flag)
+        elif isinstance(value, (list, tuple)):
+            flags += [flag, ",".join(str(v) for v in value)]
+        else:
+            flags += [flag, str(value)]
+    return flags
+
+
+def _run_drawing(command, scene, output, options):
+    """Runs `tumble COMMAND SCENE -o OUTPUT OPTIONS` and returns OUTPUT as a Path. A scene given
+    as a dict is written next to the working directory's files (so that its relative mesh paths
+    mean what they mean in Python) for the length of the run."""
+    output = pathlib.Path(output)
+    written = None
+    if isinstance(scene, dict):
+        handle, written = tempfile.mkstemp(prefix=".tumble-scene-", suffix=".json", dir=".")
+        with os.fdopen(handle, "w") as file:
+            json.dump(scene, file)
+        scene = written
+    try:
+        argv = [executable(), command, os.fspath(scene), "-o", os.fspath(output)]
+        argv += _option_flags(options)
+        run = subprocess.run(argv, stdin=subprocess.DEVNULL, capture_output=True, text=True)
+    finally:
+        if written:
+            os.unlink(written)
+    message = run.stderr.strip().splitlines()[-1] if run.stderr.strip() else ""
+    prefix = "tumble " + command + ": error: "
+    if run.returncode == 0:
+        return output
+    if run.returncode == 1:
+        raise InputError(message[len(prefix):] if message.startswith(prefix) else message)
+    if run.returncode == 3:
+        raise RunBlewUp(message, output)
+    if run.returncode == 130:
+        raise KeyboardInterrupt(message)
+    raise RuntimeError(message or "tumble %s ended with status %d" % (command, run.returncode))
+
+
+def render(scene, output, **options):
+    """Renders `scene` (a scene file's path or a scene as a dict) to `output` (.mp4, .webm, .gif
+    or a folder for PNG frames) with `tumble render`; options as its flags (size="640x360",
+    fps=30, frames="0:120", aa="off", no_overlay=True). Returns the output's path. Raises
+    InputError for bad input, RunBlewUp when the run blew up (the output is written)."""
+    return _run_drawing("render", scene, output, options)
+
+
+def compare(scene, output, integrators, **options):
+    """The same scene under several integrators in one video (`tumble compare`): integrators a
+    list of names (tumble.integrators() lists them), options as the command's flags
+    (layout="grid"). Returns the output's path."""
+    return _run_drawing("compare", scene, output, dict(options, integrators=integrators))
