@@ -352,8 +352,12 @@ WorkerAnswer Worker::run(const std::filesystem::path& file, const ImportLimits& 
       wait_for_reply(socket_, 2.0 * limits.cpu_seconds + 10.0, timed_out);
   if (!reply) return judge_end(file, limits, what, timed_out, retry);
   cpu_microseconds_ = reply->cpu_microseconds;
-  // A file it did not read cleanly may have left assimp's heap in any state: replaced.
-  const bool clean = reply->tag == kAnswer;
+  // A refusal (assimp's own "cannot read", or a check of its scene) leaves the worker as it
+  // was: assimp unwinds its readers' errors by exceptions, and what it leaks counts towards
+  // kWorkerGrowth. After an allocation failure or an unexpected exception its heap may be in
+  // any state: replaced. (Most files a fuzzer or a batch of odd files gives are refusals;
+  // a fresh worker costs a program start.)
+  const bool clean = reply->tag == kAnswer || reply->tag == kInputError;
   const bool recycle = !clean || ++files_ >= kWorkerFiles || reply->growth > kWorkerGrowth;
   // The answer stays mapped after the worker ends (the mapping holds the memory file).
   struct StopAfter {

@@ -12,8 +12,9 @@
 // before each file, counted from what the worker has used so far) and a wall-clock backstop; a
 // worker that dies on a file (a crash, a limit, the kernel's out-of-memory killer, an answer it
 // cannot write) is reaped and the next file gets a fresh one. A worker is also replaced after
-// any file it did not read cleanly, after kWorkerFiles files, and when its resident memory has
-// grown by kWorkerGrowth. The worker only reads: it sends the scene back as assimp returned it
+// an allocation failure or an unexpected exception (not after a refusal: assimp unwinds its
+// readers' errors), after kWorkerFiles files, and when its resident memory has grown by
+// kWorkerGrowth. The worker only reads: it sends the scene back as assimp returned it
 // (raw_scene.hpp), and this process checks and walks it.
 
 #include <sys/types.h>
