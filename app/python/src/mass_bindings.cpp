@@ -193,6 +193,29 @@ MassPropertiesResult::MassPropertiesResult(const engine::Shape& shape,
   }
 }
 
+namespace {
+
+/// MassProperties.to_xml: the inertial element `tumble inspect --format FORMAT` prints.
+std::string inertial_xml(const MassPropertiesResult& r, const std::string& format,
+                         const std::string& frame) {
+  app::robot::RobotFormat robot_format{};
+  if (format == "urdf") {
+    robot_format = app::robot::RobotFormat::urdf;
+  } else if (format == "sdf") {
+    robot_format = app::robot::RobotFormat::sdf;
+  } else if (format == "mjcf") {
+    robot_format = app::robot::RobotFormat::mjcf;
+  } else {
+    throw_input_error("format: expected urdf, sdf or mjcf, got '" + format + "'");
+  }
+  if (frame != "mesh" && frame != "principal") {
+    throw_input_error("frame: expected mesh or principal, got '" + frame + "'");
+  }
+  return app::robot::inertial_element(
+      robot_format, r.report->mass_properties,
+      frame == "mesh" ? app::robot::InertialFrame::mesh : app::robot::InertialFrame::principal);
+}
+
 MassPropertiesResult inspect_path(const std::string& path, const engine::MassOptions& options) {
   py::gil_scoped_release release;
   engine::MeshReport report =
@@ -202,7 +225,8 @@ MassPropertiesResult inspect_path(const std::string& path, const engine::MassOpt
   return MassPropertiesResult(std::move(report));
 }
 
-void bind_mass(py::module_& module) {
+/// tumble.MassProperties.
+void bind_mass_properties_class(py::module_& module) {
   py::class_<MassPropertiesResult> result(module, "MassProperties", R"doc(
 Mass properties of one body, in SI units (metres, kilograms), in the mesh file's axes after
 `scale`.
@@ -263,34 +287,17 @@ axis-aligned box, warnings (list of str, never dropped), method ("exact", "shell
       .def(
           "to_dict", [](const MassPropertiesResult& r) { return json_to_python(r.dictionary); },
           "A dict equal to the JSON object `tumble inspect --json` prints for the same file.")
-      .def(
-          "to_xml",
-          [](const MassPropertiesResult& r, const std::string& format, const std::string& frame) {
-            app::robot::RobotFormat robot_format{};
-            if (format == "urdf")
-              robot_format = app::robot::RobotFormat::urdf;
-            else if (format == "sdf")
-              robot_format = app::robot::RobotFormat::sdf;
-            else if (format == "mjcf")
-              robot_format = app::robot::RobotFormat::mjcf;
-            else
-              throw_input_error("format: expected urdf, sdf or mjcf, got '" + format + "'");
-            if (frame != "mesh" && frame != "principal") {
-              throw_input_error("frame: expected mesh or principal, got '" + frame + "'");
-            }
-            return app::robot::inertial_element(robot_format, r.report->mass_properties,
-                                                frame == "mesh"
-                                                    ? app::robot::InertialFrame::mesh
-                                                    : app::robot::InertialFrame::principal);
-          },
-          py::arg("format"), py::arg("frame") = "mesh",
-          "The inertial element `tumble inspect --format FORMAT --frame FRAME` prints: FORMAT "
-          "urdf, sdf or mjcf; FRAME mesh (the file's axes, all six elements) or principal.")
+      .def("to_xml", &inertial_xml, py::arg("format"), py::arg("frame") = "mesh",
+           "The inertial element `tumble inspect --format FORMAT --frame FRAME` prints: FORMAT "
+           "urdf, sdf or mjcf; FRAME mesh (the file's axes, all six elements) or principal.")
       .def("__repr__", [](const MassPropertiesResult& r) {
         return "<tumble.MassProperties of " + r.report->source + ": mass " +
                std::to_string(r.report->mass_properties.mass) + " kg, " + r.method + ">";
       });
+}
 
+/// tumble.inspect, tumble.mass_properties and tumble.primitive.
+void bind_mass_functions(py::module_& module) {
   module.def(
       "inspect",
       [](const std::string& path, std::optional<double> density, std::optional<double> mass,
@@ -348,6 +355,13 @@ wound outward (counter-clockwise seen from outside). Other options as tumble.ins
 kind and its dimensions (metres): box(size=(x, y, z)), sphere(radius), cylinder(radius,
 length), capsule(radius, length of the cylindrical part), ellipsoid(radii=(a, b, c)),
 cone(radius, height; base at z = -height/4). density kg/m^3 (default 1000) or mass kg.)doc");
+}
+
+}  // namespace
+
+void bind_mass(py::module_& module) {
+  bind_mass_properties_class(module);
+  bind_mass_functions(module);
 }
 
 }  // namespace tumble::python
