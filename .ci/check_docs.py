@@ -23,8 +23,12 @@ import sys
 import urllib.parse
 
 FENCE = re.compile(r"^\s{0,3}(`{3,}|~{3,})")
-CODE_SPAN = re.compile(r"(`+)(.+?)\1")
-INLINE_LINK = re.compile(r"!?\[(?:[^\[\]]|\[[^\[\]]*\])*\]\(\s*(<[^>]*>|[^()\s]*(?:\([^()\s]*\)[^()\s]*)*)(?:\s+\"[^\"]*\")?\s*\)")
+# A code span may run over lines of one paragraph, never past a blank line; so may a link's text.
+CODE_SPAN = re.compile(r"(`+)((?:(?!\n[ \t]*\n).)+?)\1", re.DOTALL)
+INLINE_LINK = re.compile(
+    r"!?\[(?:(?!\n[ \t]*\n)[^\[\]]|\[[^\[\]\n]*\])*\]"  # [text], one level of [] inside
+    r"\(\s*(<[^>]*>|[^()\s]*(?:\([^()\s]*\)[^()\s]*)*)"  # (target, balanced parentheses
+    r"(?:\s+\"[^\"]*\")?\s*\)")  # and an optional "title")
 DEFINITION = re.compile(r"^\s{0,3}\[[^\]]+\]:\s*(<[^>]*>|\S+)")
 HEADING = re.compile(r"^\s{0,3}(#{1,6})\s+(.*?)(?:\s+#+)?\s*$")
 HTML_ANCHOR = re.compile(r"<a\s[^>]*\b(?:name|id)\s*=\s*\"([^\"]+)\"", re.IGNORECASE)
@@ -53,10 +57,13 @@ def outside_fences(text: str):
             fence = None
 
 
-def prose_lines(text: str):
-    """(line number, line) outside fenced code blocks, with code spans blanked out."""
-    for number, line in outside_fences(text):
-        yield number, CODE_SPAN.sub(lambda m: " " * len(m.group(0)), line)
+def prose(text: str) -> str:
+    """The page with its fenced code blocks and code spans blanked out (line breaks kept, so
+    offsets still give line numbers)."""
+    lines = text.splitlines()
+    kept = dict(outside_fences(text))
+    blanked = "\n".join(kept.get(number, "") for number in range(1, len(lines) + 1))
+    return CODE_SPAN.sub(lambda m: re.sub(r"[^\n]", " ", m.group(0)), blanked)
 
 
 def heading_text(raw: str) -> str:
@@ -90,10 +97,12 @@ def anchors(page: pathlib.Path, cache: dict) -> set:
 
 
 def links(page: pathlib.Path):
-    """(line number, target) of every link on the page that is not code."""
-    for number, line in prose_lines(page.read_text(encoding="utf-8")):
-        for match in INLINE_LINK.finditer(line):
-            yield number, match.group(1).strip("<>")
+    """(line number, target) of every link on the page that is not code; a link whose text runs
+    over lines is numbered by the line of its target."""
+    text = prose(page.read_text(encoding="utf-8"))
+    for match in INLINE_LINK.finditer(text):
+        yield text.count("\n", 0, match.start(1)) + 1, match.group(1).strip("<>")
+    for number, line in enumerate(text.split("\n"), start=1):
         definition = DEFINITION.match(line)
         if definition:
             yield number, definition.group(1).strip("<>")

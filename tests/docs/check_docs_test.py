@@ -97,6 +97,15 @@ class CheckDocsTest(unittest.TestCase):
         self.assertIn("docs/other.md:3: link 'guide.md#notes-2' points nowhere", lines)
         self.assertIn("docs/other.md:3: link '#other-heading' points nowhere", lines)
 
+    def test_a_link_whose_text_runs_over_lines_is_checked(self):
+        files = dict(GOOD_TREE)
+        files["docs/other.md"] = ("# Other\n\n[guide](guide.md) a stray [ bracket\n\n"
+                                  "the [long\nname](guide.md#gone) and `a [code\nspan](x.md)`\n")
+        status, lines = run_check(files)
+        self.assertEqual(status, 1)
+        self.assertEqual(lines[0], "docs/other.md:6: link 'guide.md#gone' points nowhere")
+        self.assertEqual(len(lines), 2)
+
     def test_an_orphan_page_fails(self):
         files = dict(GOOD_TREE)
         files["docs/orphan.md"] = "# Orphan\n\n[back](../README.md)\n"
