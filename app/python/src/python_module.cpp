@@ -4,11 +4,15 @@
 // rendering from Python runs the `tumble` executable in a child process (tumble/__init__.py).
 #include "mass_bindings.hpp"
 #include "python_support.hpp"
+#include "robot_bindings.hpp"
+#include "simulation_bindings.hpp"
 
 PYBIND11_MODULE(_tumble, module) {
   module.doc() = "tumble: mass properties of meshes, rigid-body dynamics (compiled part)";
   tumble::python::bind_input_error(module);
   tumble::python::bind_mass(module);
+  tumble::python::bind_robot(module);
+  tumble::python::bind_simulation(module);
   module.attr("__version__") = TUMBLE_VERSION;
   // Where tumble/__init__.py looks for the `tumble` executable (after $TUMBLE_EXECUTABLE).
   module.def("_executable_candidates", [] {

@@ -10,6 +10,7 @@ Rendering runs the `tumble` executable in a child process (render, compare), so 
 never loads OpenGL.
 """
 
+import csv
 import json
 import os
 import pathlib
@@ -26,6 +27,13 @@ __all__ = [
     "inspect",
     "mass_properties",
     "primitive",
+    "RobotInertials",
+    "inertials",
+    "Trajectory",
+    "simulate",
+    "integrators",
+    "bench",
+    "stability",
     "render",
     "compare",
     "executable",
@@ -68,6 +76,85 @@ def _option_flags(options):
         else:
             flags += [flag, str(value)]
     return flags
+
+
+def _error_of(run, command):
+    """The exception of a `tumble COMMAND` that ended with a non-zero status."""
+    message = run.stderr.strip().splitlines()[-1] if run.stderr.strip() else ""
+    prefix = "tumble " + command + ": error: "
+    if run.returncode == 1:
+        return InputError(message[len(prefix):] if message.startswith(prefix) else message)
+    if run.returncode == 130:
+        return KeyboardInterrupt(message)
+    return RuntimeError(message or "tumble %s ended with status %d" % (command, run.returncode))
+
+
+def _csv_value(text):
+    """A CSV field as the number it writes (int, float: the same double, 17 digits), None when
+    empty, else the text."""
+    if text == "":
+        return None
+    try:
+        return int(text)
+    except ValueError:
+        pass
+    try:
+        return float(text)
+    except ValueError:
+        return text
+
+
+def _run_sweep(command, scenes, csv_name, options):
+    """Runs `tumble COMMAND SCENES... -o TMP OPTIONS` in a temporary folder and returns the rows
+    of TMP/CSV_NAME as dicts (the folder is removed). Scenes given as dicts are written as files
+    in the working directory for the length of the run."""
+    written = []
+    try:
+        paths = []
+        for scene in scenes:
+            if isinstance(scene, dict):
+                handle, name = tempfile.mkstemp(prefix=".tumble-scene-", suffix=".json", dir=".")
+                written.append(name)
+                with os.fdopen(handle, "w") as file:
+                    json.dump(scene, file)
+                paths.append(name)
+            else:
+                paths.append(os.fspath(scene))
+        with tempfile.TemporaryDirectory(prefix="tumble-" + command + "-") as folder:
+            output = os.path.join(folder, "out")
+            argv = [executable(), command, *paths, "-o", output] + _option_flags(options)
+            run = subprocess.run(argv, stdin=subprocess.DEVNULL, capture_output=True, text=True)
+            if run.returncode != 0:
+                raise _error_of(run, command)
+            with open(os.path.join(output, csv_name), newline="") as file:
+                return [{key: _csv_value(value) for key, value in row.items()}
+                        for row in csv.DictReader(file)]
+    finally:
+        for name in written:
+            os.unlink(name)
+
+
+def bench(scenes, *, integrators=None, dts=None, tolerances=None, duration=None, repeat=None,
+          jobs=None):
+    """Error against run time for every integrator and step size (`tumble bench`): the rows of
+    its results.csv as dicts, one per run, numbers as the CSV writes them (s, rad, m; the
+    columns are docs/bench.md's). scenes: a list of scene paths or dicts; integrators, dts,
+    tolerances: lists (the flags' comma-separated lists); duration s; repeat: timed runs per
+    case; jobs: cases at once. Runs the `tumble` executable (its report and plots are not kept).
+    Raises InputError for bad input, KeyboardInterrupt on Ctrl-C."""
+    return _run_sweep("bench", scenes, "results.csv",
+                      dict(integrators=integrators, dts=dts, tolerances=tolerances,
+                           duration=duration, repeat=repeat, jobs=jobs))
+
+
+def stability(scenes=(), *, suite=None, integrators=None, cases=None, dts=None):
+    """Stiff and extreme cases under every integrator and step (`tumble stability`): the rows of
+    its stability.csv as dicts, one per run, each with its class (stable, drifting, damped,
+    wrong, blew up) and errors (docs/stability.md). suite: "standard" or "quick"; cases,
+    integrators, dts: lists; scenes: scene paths or dicts added as cases. Runs the `tumble`
+    executable. Raises InputError for bad input, KeyboardInterrupt on Ctrl-C."""
+    return _run_sweep("stability", scenes, "stability.csv",
+                      dict(suite=suite, integrators=integrators, cases=cases, dts=dts))
 
 
 def _run_drawing(command, scene, output, options):
