@@ -194,11 +194,15 @@ TEST(ImportWorker, ErrorsAreWordForWordAndTheWorkerIsReplacedOnlyAfterFailures) 
   run({"echo", "1"});
   const auto pid = import_worker_pid();
   // A refusal keeps the worker: assimp unwinds its errors.
-  EXPECT_EQ(input_error_of([] { run({"error", "model.obj: face 3 is bad"}); }),
+  EXPECT_EQ(input_error_of([] {
+              run({"error", "model.obj: face 3 is bad"});
+            }),
             "model.obj: face 3 is bad");
   EXPECT_EQ(import_worker_pid(), pid);
   // An unexpected exception does not: the worker's heap may be in any state.
-  EXPECT_EQ(input_error_of([] { run({"throw", "no such thing"}); }),
+  EXPECT_EQ(input_error_of([] {
+              run({"throw", "no such thing"});
+            }),
             "model.obj: assimp failed reading it (no such thing)");
   EXPECT_FALSE(import_worker_pid().has_value());
   EXPECT_EQ(input_error_of([] { run({"exit"}); }),
