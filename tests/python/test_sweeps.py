@@ -3,13 +3,20 @@ stability.csv as dicts, the same numbers as the CSVs the command writes for the 
 (apart from the timings, which differ between two runs)."""
 
 import csv
+import os
+import signal
+import subprocess
+import sys
+import tempfile
+import textwrap
+import time
 
 import pytest
 
 import tumble
 from conftest import SOURCE
 
-SPIN = {"name": "spin", "duration": 0.5, "dt": 0.01,
+SPIN = {"name": "spin", "duration": 0.2, "dt": 0.01,
         "bodies": [{"name": "box", "inertia": {"principal": [1.0, 2.0, 3.0]}, "mass": 1.0,
                     "angular_velocity": [0.1, 2.0, 0.1]}]}
 # The columns that differ between two runs of the same bench: the clock and the core.
@@ -68,3 +75,52 @@ def test_sweeps_raise_input_errors_with_the_command_lines_message():
                      integrators=["euler9"])
     with pytest.raises(tumble.InputError, match="suite"):
         tumble.stability(suite="nope")
+
+
+def test_ctrl_c_stops_a_long_bench_and_its_child():
+    script = textwrap.dedent("""
+        import sys, tumble
+        scene = {"duration": 1e5, "dt": 1e-4,
+                 "bodies": [{"inertia": {"principal": [1, 2, 3]}, "mass": 1,
+                             "angular_velocity": [1, 2, 3]}]}
+        print("running", flush=True)
+        try:
+            tumble.bench([scene], integrators=["rk4"], dts=[1e-4], repeat=1)
+        except KeyboardInterrupt:
+            print("interrupted", flush=True)
+            sys.exit(7)
+    """)
+    child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True, cwd=tempfile.mkdtemp())
+    try:
+        assert child.stdout.readline() == "running\n"
+        time.sleep(1.0)  # the bench is running in its child
+        benches = [pid for pid in _children_of(child.pid)
+                   if os.readlink("/proc/%d/exe" % pid).endswith("/tumble")]
+        assert len(benches) == 1
+        sent = time.monotonic()
+        child.send_signal(signal.SIGINT)  # to Python alone, not to its child
+        out, err = child.communicate(timeout=10)
+        waited = time.monotonic() - sent
+    finally:
+        if child.poll() is None:
+            child.kill()
+    assert child.returncode == 7, err
+    assert out == "interrupted\n"
+    assert waited < 2.0
+    # The bench's process is not left behind, running on.
+    assert not os.path.exists("/proc/%d" % benches[0])
+
+
+def _children_of(parent):
+    found = []
+    for name in os.listdir("/proc"):
+        if not name.isdigit():
+            continue
+        try:
+            stat = open("/proc/%s/stat" % name).read()
+        except OSError:
+            continue
+        if int(stat[stat.rindex(")") + 2:].split()[1]) == parent:
+            found.append(int(name))
+    return found

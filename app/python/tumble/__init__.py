@@ -78,6 +78,21 @@ def _option_flags(options):
     return flags
 
 
+def _run_child(argv):
+    """Runs `argv` to its end and returns its CompletedProcess (text output captured). On
+    Ctrl-C or any other exception the child is killed and reaped before the exception goes on,
+    so no `tumble` is left running."""
+    process = subprocess.Popen(argv, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True)
+    try:
+        out, err = process.communicate()
+    except BaseException:
+        process.kill()
+        process.wait()
+        raise
+    return subprocess.CompletedProcess(argv, process.returncode, out, err)
+
+
 def _error_of(run, command):
     """The exception of a `tumble COMMAND` that ended with a non-zero status."""
     message = run.stderr.strip().splitlines()[-1] if run.stderr.strip() else ""
@@ -122,8 +137,11 @@ def _run_sweep(command, scenes, csv_name, options):
                 paths.append(os.fspath(scene))
         with tempfile.TemporaryDirectory(prefix="tumble-" + command + "-") as folder:
             output = os.path.join(folder, "out")
-            argv = [executable(), command, *paths, "-o", output] + _option_flags(options)
-            run = subprocess.run(argv, stdin=subprocess.DEVNULL, capture_output=True, text=True)
+            # One shard of one: the whole sweep, its CSV without the plots and the report
+            # (the same rows, and no gnuplot needed).
+            argv = [executable(), command, *paths, "-o", output, "--shard", "0/1"]
+            argv += _option_flags(options)
+            run = _run_child(argv)
             if run.returncode != 0:
                 raise _error_of(run, command)
             with open(os.path.join(output, csv_name), newline="") as file:
@@ -149,7 +167,7 @@ def bench(scenes, *, integrators=None, dts=None, tolerances=None, duration=None,
 
 def stability(scenes=(), *, suite=None, integrators=None, cases=None, dts=None):
     """Stiff and extreme cases under every integrator and step (`tumble stability`): the rows of
-    its stability.csv as dicts, one per run, each with its class (stable, drifting, damped,
+    its stability.csv as dicts, one per run, each with its outcome (stable, drifting, damped,
     wrong, blew up) and errors (docs/stability.md). suite: "standard" or "quick"; cases,
     integrators, dts: lists; scenes: scene paths or dicts added as cases. Runs the `tumble`
     executable. Raises InputError for bad input, KeyboardInterrupt on Ctrl-C."""
@@ -171,7 +189,7 @@ def _run_drawing(command, scene, output, options):
     try:
         argv = [executable(), command, os.fspath(scene), "-o", os.fspath(output)]
         argv += _option_flags(options)
-        run = subprocess.run(argv, stdin=subprocess.DEVNULL, capture_output=True, text=True)
+        run = _run_child(argv)
     finally:
         if written:
             os.unlink(written)
