@@ -187,3 +187,28 @@ def test_the_module_links_no_renderer():
     linked = subprocess.run(["ldd", so], capture_output=True, text=True, check=True).stdout
     for library in ("libOSMesa", "libLLVM", "libSDL2", "libGL"):
         assert library not in linked
+
+
+def test_simulate_releases_the_gil_while_it_runs():
+    # The main thread keeps counting while another runs a simulation of about a second: were the
+    # GIL held through the run, the main thread would stand still for all of it.
+    import threading
+    scene = falling_box(duration=300.0, dt=0.001, gravity=[0, 0, 0])
+    done = {}
+
+    def run():
+        start = time.monotonic()
+        done["trajectory"] = tumble.simulate(scene, every=1000000)
+        done["seconds"] = time.monotonic() - start
+
+    worker = threading.Thread(target=run)
+    ticks = []
+    worker.start()
+    while worker.is_alive():
+        ticks.append(time.monotonic())
+        sum(range(1000))
+    worker.join()
+    assert done["seconds"] > 0.2, "the run is too short to tell"
+    largest_gap = max(b - a for a, b in zip(ticks, ticks[1:]))
+    assert largest_gap < 0.5 * done["seconds"]
+    assert len(done["trajectory"]) == 2
