@@ -69,6 +69,7 @@ def test_inspect_equals_the_command_lines_json(cli_json, name):
     mesh = SOURCE / "assets" / "meshes" / (name + ".obj")
     from_cli = cli_json("inspect", mesh)
     assert tumble.inspect(str(mesh)).to_dict() == dict(from_cli, method="exact")
+    assert tumble.inspect(mesh).to_dict() == dict(from_cli, method="exact")  # a pathlib.Path
 
 
 def test_options_mean_what_the_flags_mean(cli_json, tmp_path):

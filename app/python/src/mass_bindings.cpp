@@ -300,10 +300,11 @@ axis-aligned box, warnings (list of str, never dropped), method ("exact", "shell
 void bind_mass_functions(py::module_& module) {
   module.def(
       "inspect",
-      [](const std::string& path, std::optional<double> density, std::optional<double> mass,
+      [](const py::object& path, std::optional<double> density, std::optional<double> mass,
          const py::object& scale, std::optional<double> shell, const std::string& inertia,
          bool allow_overlap) {
-        return inspect_path(path,
+        const std::string file = py::str(py::module_::import("os").attr("fspath")(path));
+        return inspect_path(file,
                             mass_options(density, mass, scale, shell, inertia, allow_overlap));
       },
       py::arg("path"), py::kw_only(), py::arg("density") = py::none(), py::arg("mass") = py::none(),

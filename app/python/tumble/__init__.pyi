@@ -36,7 +36,7 @@ class MassProperties:
     def to_xml(self, format: Literal["urdf", "sdf", "mjcf"],
                frame: Literal["mesh", "principal"] = "mesh") -> str: ...
 
-def inspect(path: str, *, density: Optional[float] = None, mass: Optional[float] = None,
+def inspect(path: PathLike, *, density: Optional[float] = None, mass: Optional[float] = None,
             scale: Union[float, Sequence[float]] = 1.0, shell: Optional[float] = None,
             inertia: Literal["exact", "shell"] = "exact",
             allow_overlap: bool = False) -> MassProperties: ...
