@@ -1,10 +1,16 @@
-// `tumble inertials`' comparison, as a table and as JSON.
-#include "inertials_report.hpp"
+// `tumble inertials`' comparison, as a table and as JSON, and the rewritten file.
+#include "app/robot/inertials_report.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
+#include "app/robot/rewrite.hpp"
+#include "app/support/file_write.hpp"
+#include "base/errors.hpp"
+#include "base/file_checks.hpp"
+#include "base/temporary_path.hpp"
 #include "engine/mass/principal_frame.hpp"
 
 namespace tumble::app {
@@ -24,7 +30,8 @@ const char* format_name(robot::RobotFormat format) {
 
 /// "%.6g" of each value, space-separated; values within rounding of zero next to `scale`
 /// (the row's largest by default) are written 0, not as -5.8e-20.
-std::string numbers(const Eigen::Ref<const Eigen::VectorXd>& values, double scale = 0.0) {
+std::string comparison_numbers(const Eigen::Ref<const Eigen::VectorXd>& values,
+                               double scale = 0.0) {
   if (scale == 0.0) scale = values.cwiseAbs().maxCoeff();
   std::string out;
   char buffer[32];
@@ -188,21 +195,26 @@ std::string format_comparison(const robot::Robot& robot, const std::vector<LinkC
     out += row("", "stated",
                c ? (link.result.mass_from_density ? "computed (density)" : "computed") : "computed",
                "relative difference");
-    out += row("mass", s && s->mass ? numbers(Eigen::Matrix<double, 1, 1>(*s->mass)) : "-",
-               c ? numbers(Eigen::Matrix<double, 1, 1>(c->mass)) : "-",
-               relative(link.mass, tolerance, check));
+    out +=
+        row("mass", s && s->mass ? comparison_numbers(Eigen::Matrix<double, 1, 1>(*s->mass)) : "-",
+            c ? comparison_numbers(Eigen::Matrix<double, 1, 1>(c->mass)) : "-",
+            relative(link.mass, tolerance, check));
     const double size = c ? std::sqrt(c->inertia.trace() / (2.0 * c->mass)) : 0.0;
-    out += row("centre of mass", s ? numbers(s->center_of_mass, size) : "-",
-               c ? numbers(c->center_of_mass, std::max(size, c->center_of_mass.norm())) : "-",
-               relative(link.center_of_mass, tolerance, check));
-    out += row("moments", s && s->inertia ? numbers(moments_of(*s->inertia)) : "-",
-               c ? numbers(moments_of(c->inertia)) : "-", relative(link.moments, tolerance, false));
-    out += row("inertia xx yy zz", s && s->inertia ? numbers(s->inertia->diagonal()) : "-",
-               c ? numbers(c->inertia.diagonal()) : "-", "");
-    out += row("inertia xy xz yz",
-               s && s->inertia ? numbers(off_diagonal(*s->inertia), s->inertia->norm()) : "-",
-               c ? numbers(off_diagonal(c->inertia), c->inertia.norm()) : "-",
-               relative(link.inertia, tolerance, check));
+    out += row(
+        "centre of mass", s ? comparison_numbers(s->center_of_mass, size) : "-",
+        c ? comparison_numbers(c->center_of_mass, std::max(size, c->center_of_mass.norm())) : "-",
+        relative(link.center_of_mass, tolerance, check));
+    out += row("moments", s && s->inertia ? comparison_numbers(moments_of(*s->inertia)) : "-",
+               c ? comparison_numbers(moments_of(c->inertia)) : "-",
+               relative(link.moments, tolerance, false));
+    out +=
+        row("inertia xx yy zz", s && s->inertia ? comparison_numbers(s->inertia->diagonal()) : "-",
+            c ? comparison_numbers(c->inertia.diagonal()) : "-", "");
+    out += row(
+        "inertia xy xz yz",
+        s && s->inertia ? comparison_numbers(off_diagonal(*s->inertia), s->inertia->norm()) : "-",
+        c ? comparison_numbers(off_diagonal(c->inertia), c->inertia.norm()) : "-",
+        relative(link.inertia, tolerance, check));
     for (const std::string& problem : link.problems) out += "  ! " + problem + "\n";
     for (const std::string& note : link.notes) out += "  note: " + note + "\n";
   }
@@ -221,6 +233,87 @@ nlohmann::json comparison_to_json(const robot::Robot& robot,
     out["links"].push_back(link_json(link, tolerance, check));
   if (check) out["tolerance"] = tolerance;
   return out;
+}
+
+namespace {
+
+/// `properties` as -o writes them: a centre-of-mass coordinate or product of inertia within
+/// rounding of zero (1e-12 of the link's size or inertia: what summing a mesh's triangles
+/// leaves of an exact zero) is written 0, not 9.5e-21.
+engine::MassProperties written_inertial(engine::MassProperties properties) {
+  const double size = std::sqrt(properties.inertia.trace() / (2.0 * properties.mass));
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(properties.center_of_mass[i]) <= 1e-12 * size) properties.center_of_mass[i] = 0;
+  }
+  const double scale = properties.inertia.norm();
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      if (i != j && std::abs(properties.inertia(i, j)) <= 1e-12 * scale) {
+        properties.inertia(i, j) = 0;
+      }
+    }
+  }
+  return properties;
+}
+
+/// Writes `text` to `output` whole or not at all: a temporary sibling renamed into place.
+void write_atomically(const std::filesystem::path& output, const std::filesystem::path& input,
+                      const std::string& text) {
+  const std::filesystem::path target = checked_output(output, {input});
+  remove_stale_temporaries(target);
+  const std::filesystem::path temporary = temporary_sibling(target);
+  try {
+    write_text_file(temporary, text);
+    std::filesystem::rename(temporary, target);
+  } catch (const std::filesystem::filesystem_error& error) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+    throw InputError("cannot write '" + output.string() + "': " + error.code().message());
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+    throw;
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> InertialsReport::errors() const {
+  std::vector<std::string> out;
+  for (const LinkComparison& link : links) {
+    if (link.result.error) out.push_back(robot.file.string() + ": " + *link.result.error);
+  }
+  return out;
+}
+
+InertialsReport compute_inertials(const std::filesystem::path& file, const robot::ReadOptions& read,
+                                  const robot::ComputeOptions& compute) {
+  InertialsReport report;
+  report.robot = robot::read_robot(file, read);
+  for (const robot::Link& link : report.robot.links) {
+    report.links.push_back(compare_link(link, robot::compute_link_inertial(link, compute)));
+  }
+  report.source = read.from == robot::GeometrySource::collision ? "collision" : "visual";
+  return report;
+}
+
+std::string rewritten_inertials(const InertialsReport& report, robot::InertialFrame frame) {
+  std::vector<std::optional<engine::MassProperties>> inertials;
+  for (const LinkComparison& link : report.links) {
+    inertials.push_back(link.result.computed
+                            ? std::optional(written_inertial(*link.result.computed))
+                            : std::nullopt);
+  }
+  return robot::rewritten_text(report.robot, inertials, frame);
+}
+
+void write_inertials(const InertialsReport& report, const std::filesystem::path& output,
+                     robot::InertialFrame frame) {
+  const std::vector<std::string> errors = report.errors();
+  if (!errors.empty()) {
+    throw InputError(errors.front() + "; nothing written to '" + output.string() + "'");
+  }
+  write_atomically(output, report.robot.file, rewritten_inertials(report, frame));
 }
 
 }  // namespace tumble::app
