@@ -30,6 +30,13 @@ void apply_options(const SimulateOptions& options, SceneDescription& scene) {
   if (options.dt) scene.dt = positive_option(*options.dt, "--dt");
   if (options.duration) scene.duration = positive_option(*options.duration, "--duration");
   if (options.tolerance) scene.tolerance = positive_option(*options.tolerance, "--tolerance");
+  if (options.absolute_tolerance) {
+    if (!(std::isfinite(*options.absolute_tolerance) && *options.absolute_tolerance >= 0.0)) {
+      throw InputError("--absolute-tolerance: expected a finite number >= 0, got " +
+                       printf_number(*options.absolute_tolerance, "%.17g"));
+    }
+    scene.absolute_tolerance = *options.absolute_tolerance;
+  }
   if (auto problem = step_problem(scene.dt, scene.duration)) {
     throw InputError((options.dt ? std::string("--dt") : scene.file.string() + ": dt") + ": " +
                      *problem);
@@ -272,7 +279,11 @@ CLI::App& add_simulate_command(CLI::App& cli, SimulateOptions& options) {
       "--duration", [&](double value) { options.duration = value; }, "Simulated time T in seconds");
   simulate.add_option_function<double>(
       "--tolerance", [&](double value) { options.tolerance = value; },
-      "Local error tolerance TOL of adaptive integrators");
+      "Relative local error tolerance RTOL of adaptive integrators (default 1e-10)");
+  simulate.add_option_function<double>(
+      "--absolute-tolerance", [&](double value) { options.absolute_tolerance = value; },
+      "Absolute local error tolerance ATOL of adaptive integrators, in each quantity's SI unit "
+      "(m, m/s, rad, kg m^2/s; default 0)");
   simulate.add_option_function<std::string>(
       "--csv", [&](const std::string& value) { options.csv = value; },
       "Write the trajectory to FILE (written atomically)");
