@@ -42,6 +42,17 @@
 namespace tumble::engine::steppers {
 namespace {
 
+/// dopri's largest step as a turn, rad: the step never turns the body by more than this at its
+/// current spin |w|. A maximal step size is part of Hairer's own DOPRI5 (Hairer, Norsett,
+/// Wanner 1993, II.4 and its code's HMAX); here it is scaled by the spin so it means the same
+/// for every body. Why: the estimate measures the 4th-order solution's error, and the step kept
+/// is the 5th-order one's, far smaller only while h |w| is small; at loose tolerances the
+/// controller reaches ~1 rad a step, where the two are comparable and the global error, the sum
+/// of the steps' errors, is hundreds of tolerances (the heavy top at 1e-4: 457 with 1.1 rad a
+/// step, 248 with 1.0, 25 with 0.7, 3.0 with 0.5; engine/PHYSICS.md §3). Tighter tolerances
+/// take smaller steps and are untouched.
+constexpr double kDopriMaxTurnPerStep = 0.5;
+
 Eigen::Vector3d dexp_inverse(const Eigen::Vector3d& theta, const Eigen::Vector3d& w) {
   const Eigen::Vector3d theta_w = theta.cross(w);
   return w - 0.5 * theta_w + theta.cross(theta_w) / 12.0;
@@ -217,6 +228,9 @@ class Dopri final : public BodyStepper {
     }
     // Standard controller: safety 0.9, growth between 0.2x and 5x.
     step_ = h * (norm == 0.0 ? 5.0 : std::clamp(0.9 * std::pow(norm, -0.2), 0.2, 5.0));
+    // At most kDopriMaxTurnPerStep of turn at the current spin (|dq/dt| = |w| / 2 at unit q).
+    const double spin = 2.0 * k1_.segment<4>(6).norm();
+    if (spin * step_ > kDopriMaxTurnPerStep) step_ = kDopriMaxTurnPerStep / spin;
     return true;
   }
 
