@@ -411,7 +411,9 @@ void write_report(const BenchOutcome& outcome, const std::filesystem::path& file
          "force terms; a fixed-step integrator makes its catalog figure per step (rk4 4, "
          "splitting 2, splitting4 6, free-rotor 2, the Euler variants 1; midpoint's 2 is the "
          "least its fixed-point solve takes), dopri counts its own (6 per attempt after the "
-         "first, its last stage reused). `seconds_median`, `seconds_min`, `seconds_max`: over "
+         "first, its last stage reused, and one more per step whose orientation it projects "
+         "back onto the energy of a torque-free body). `seconds_median`, `seconds_min`, "
+         "`seconds_max`: over "
          "the `repeats` timed runs.\n\n";
   for (std::size_t s = 0; s < outcome.scenes.size(); ++s) scene_section(out, outcome, s);
   write_text_file(file, out.str());

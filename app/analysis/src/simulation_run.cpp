@@ -24,6 +24,13 @@ void apply_run_options(const SimulateOptions& options, SceneDescription& scene) 
   if (options.dt) scene.dt = positive_option(*options.dt, "--dt");
   if (options.duration) scene.duration = positive_option(*options.duration, "--duration");
   if (options.tolerance) scene.tolerance = positive_option(*options.tolerance, "--tolerance");
+  if (options.absolute_tolerance) {
+    if (!(std::isfinite(*options.absolute_tolerance) && *options.absolute_tolerance >= 0.0)) {
+      throw InputError("--absolute-tolerance: expected a finite number >= 0, got " +
+                       printf_number(*options.absolute_tolerance, "%.17g"));
+    }
+    scene.absolute_tolerance = *options.absolute_tolerance;
+  }
   if (auto problem = step_problem(scene.dt, scene.duration)) {
     throw InputError((options.dt ? std::string("--dt") : scene.file.string() + ": dt") + ": " +
                      *problem);

@@ -50,6 +50,7 @@ engine::SimulationSettings sweep_settings(const StabilityCase& c, engine::Integr
   settings.dt = dt;
   settings.duration = c.duration;
   settings.tolerance = c.tolerance;
+  settings.absolute_tolerance = c.absolute_tolerance;
   settings.blowup_factor = c.blowup_factor;
   return settings;
 }

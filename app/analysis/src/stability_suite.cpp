@@ -227,6 +227,7 @@ StabilityCase scene_case(const std::filesystem::path& file,
     }
   }
   if (scene.tolerance) c.tolerance = *scene.tolerance;
+  if (scene.absolute_tolerance) c.absolute_tolerance = *scene.absolute_tolerance;
   return c;
 }
 

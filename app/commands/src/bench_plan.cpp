@@ -118,10 +118,13 @@ Sweep parse_sweep(const BenchOptions& options) {
   return sweep;
 }
 
-/// The steps of one scene: the given steps, or the default factors of the scene's dt that fit.
+/// The steps of one scene: the given steps, or the default factors of the scene's dt that fit;
+/// none when every integrator is adaptive (they take tolerances, and their samples are on the
+/// scene's dt).
 std::vector<double> scene_steps(const Sweep& sweep, const SceneDescription& description,
                                 const std::filesystem::path& file) {
   std::vector<double> steps;
+  if (!sweep.any_fixed) return steps;
   if (sweep.dts) {
     steps = *sweep.dts;
     for (double dt : steps) {

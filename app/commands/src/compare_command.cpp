@@ -213,6 +213,7 @@ void start_jobs(const CompareOptions& options, const CompiledScene& compiled,
   reference.plan = plan_render(run_options(options, reference.integrator));
   reference.plan.settings = first.plan.settings;
   reference.plan.scene.tolerance = motion.tolerance();
+  reference.plan.scene.absolute_tolerance.reset();  // the reference's own: relative only
   reference.job = std::make_unique<RenderJob>(reference.plan, compiled, renderer);
 }
 

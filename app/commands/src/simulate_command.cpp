@@ -92,7 +92,11 @@ CLI::App& add_simulate_command(CLI::App& cli, SimulateOptions& options) {
       "--duration", [&](double value) { options.duration = value; }, "Simulated time T in seconds");
   simulate.add_option_function<double>(
       "--tolerance", [&](double value) { options.tolerance = value; },
-      "Local error tolerance TOL of adaptive integrators");
+      "Relative local error tolerance RTOL of adaptive integrators (default 1e-10)");
+  simulate.add_option_function<double>(
+      "--absolute-tolerance", [&](double value) { options.absolute_tolerance = value; },
+      "Absolute local error tolerance ATOL of adaptive integrators, in each quantity's SI unit "
+      "(m, m/s, rad, kg m^2/s; default 0)");
   simulate.add_option_function<std::string>(
       "--csv", [&](const std::string& value) { options.csv = value; },
       "Write the trajectory to FILE (written atomically)");

@@ -205,13 +205,15 @@ void bind_simulation(py::module_& module) {
   module.def(
       "simulate",
       [](const py::object& scene, std::optional<std::string> integrator, std::optional<double> dt,
-         std::optional<double> duration, std::optional<double> tolerance, long long every,
+         std::optional<double> duration, std::optional<double> tolerance,
+         std::optional<double> absolute_tolerance, long long every,
          std::optional<double> blowup_factor, bool allow_long) {
         app::SimulateOptions options;
         options.integrator = std::move(integrator);
         options.dt = dt;
         options.duration = duration;
         options.tolerance = tolerance;
+        options.absolute_tolerance = absolute_tolerance;
         options.every = every;
         options.blowup_factor = blowup_factor;
         options.allow_long = allow_long;
@@ -219,14 +221,15 @@ void bind_simulation(py::module_& module) {
       },
       py::arg("scene"), py::kw_only(), py::arg("integrator") = py::none(),
       py::arg("dt") = py::none(), py::arg("duration") = py::none(),
-      py::arg("tolerance") = py::none(), py::arg("every") = 1,
-      py::arg("blowup_factor") = py::none(), py::arg("allow_long") = false,
+      py::arg("tolerance") = py::none(), py::arg("absolute_tolerance") = py::none(),
+      py::arg("every") = 1, py::arg("blowup_factor") = py::none(), py::arg("allow_long") = false,
       R"doc(Runs a scene without rendering, as `tumble simulate SCENE` does; returns a Trajectory.
 
 scene: a scene file's path, or a dict in the same format (docs/scenes.md; relative mesh paths
 from the working directory). The options override the scene, as the command's flags do:
-integrator (a name from tumble.integrators()), dt (s), duration (s), tolerance (adaptive
-integrators), every (record every Nth step; the first and the last always), blowup_factor
+integrator (a name from tumble.integrators()), dt (s), duration (s), tolerance and
+absolute_tolerance (the relative and absolute tolerances of adaptive integrators; the absolute
+one in each quantity's SI unit), every (record every Nth step; the first and the last always), blowup_factor
 (energy or |L| growth that stops the run, default 10), allow_long (more than 1e9 steps).
 A blow-up is not an error: the Trajectory says so (blew_up, blow_up) and holds the steps up to
 the last good one. Ctrl-C raises KeyboardInterrupt within a fraction of a second. Raises

@@ -81,7 +81,8 @@ class Trajectory:
 
 def simulate(scene: Union[PathLike, Mapping[str, Any]], *, integrator: Optional[str] = None,
              dt: Optional[float] = None, duration: Optional[float] = None,
-             tolerance: Optional[float] = None, every: int = 1,
+             tolerance: Optional[float] = None,
+             absolute_tolerance: Optional[float] = None, every: int = 1,
              blowup_factor: Optional[float] = None, allow_long: bool = False) -> Trajectory: ...
 def integrators() -> list[dict[str, Any]]: ...
 

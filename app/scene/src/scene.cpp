@@ -238,8 +238,8 @@ SceneDescription parse_scene(const std::string& text, const std::filesystem::pat
   // Read the JSON (comments allowed; syntax errors by line and column).
   const json root = parse_strict_json(text, source);
   const Field top(root, "", source);
-  top.expect_object(
-      {"name", "duration", "dt", "integrator", "tolerance", "gravity", "bodies", "render"});
+  top.expect_object({"name", "duration", "dt", "integrator", "tolerance", "absolute_tolerance",
+                     "gravity", "bodies", "render"});
 
   SceneDescription scene;
   scene.file = file;
@@ -260,6 +260,9 @@ SceneDescription parse_scene(const std::string& text, const std::filesystem::pat
     }
   }
   if (auto tolerance = top.find("tolerance")) scene.tolerance = tolerance->positive();
+  if (auto absolute = top.find("absolute_tolerance")) {
+    scene.absolute_tolerance = absolute->non_negative();
+  }
   if (auto gravity = top.find("gravity")) scene.gravity = gravity->vector3();
   // The render object is read by the render command (parse_render_settings), not here.
   if (auto render = top.find("render")) scene.render = render->value();

@@ -19,6 +19,7 @@ engine::SimulationSettings simulation_settings(const SceneDescription& scene) {
   settings.dt = scene.dt;
   settings.duration = scene.duration;
   if (scene.tolerance) settings.tolerance = *scene.tolerance;
+  if (scene.absolute_tolerance) settings.absolute_tolerance = *scene.absolute_tolerance;
   return settings;
 }
 

@@ -21,6 +21,7 @@
 //   (Catto, "Numerical methods", GDC 2015): unconditionally stable, damps tumbling. Translation
 //   is symplectic Euler, as in semi-implicit-euler (so the two agree on a pure spring).
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include <Eigen/LU>
@@ -240,6 +241,23 @@ std::optional<IntegratorKind> integrator_from_name(std::string_view name) {
   return std::nullopt;
 }
 
+std::optional<std::string> step_settings_problem(const StepSettings& settings) {
+  const auto text = [](double value) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%g", value);
+    return std::string(buffer);
+  };
+  if (!(std::isfinite(settings.tolerance) && settings.tolerance > 0.0)) {
+    return "tolerance: expected a positive finite relative tolerance, got " +
+           text(settings.tolerance);
+  }
+  if (!(std::isfinite(settings.absolute_tolerance) && settings.absolute_tolerance >= 0.0)) {
+    return "absolute_tolerance: expected a finite absolute tolerance >= 0, got " +
+           text(settings.absolute_tolerance);
+  }
+  return std::nullopt;
+}
+
 std::unique_ptr<BodyStepper> make_stepper(IntegratorKind kind, const BodyModel& body,
                                           const BodyState& initial, const StepSettings& settings) {
   using K = IntegratorKind;
@@ -267,7 +285,8 @@ std::unique_ptr<BodyStepper> make_stepper(IntegratorKind kind, const BodyModel& 
     case K::kMoserVeselov:
       return steppers::make_moser_veselov(body);
     case K::kDopri:
-      return steppers::make_dopri(body, settings.tolerance);
+      if (auto problem = step_settings_problem(settings)) throw InputError(*problem);
+      return steppers::make_dopri(body, settings);
     case K::kExact:  // refuses bodies without a closed form (exact_stepper.cpp)
       return steppers::make_exact(body, initial);
   }

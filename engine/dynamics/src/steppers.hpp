@@ -51,7 +51,7 @@ std::unique_ptr<BodyStepper> make_seed_semi_implicit(const BodyModel& body);
 std::unique_ptr<BodyStepper> make_implicit_euler(const BodyModel& body);
 std::unique_ptr<BodyStepper> make_rk4(const BodyModel& body);
 std::unique_ptr<BodyStepper> make_midpoint(const BodyModel& body);
-std::unique_ptr<BodyStepper> make_dopri(const BodyModel& body, double tolerance);
+std::unique_ptr<BodyStepper> make_dopri(const BodyModel& body, const StepSettings& settings);
 std::unique_ptr<BodyStepper> make_splitting(const BodyModel& body, int order);
 std::unique_ptr<BodyStepper> make_free_rotor(const BodyModel& body);
 std::unique_ptr<BodyStepper> make_moser_veselov(const BodyModel& body);

@@ -26,6 +26,7 @@ Simulation::Simulation(std::vector<BodyModel> bodies, std::vector<BodyState> ini
   states_ = initial_;
   StepSettings step_settings;
   step_settings.tolerance = settings_.tolerance;
+  step_settings.absolute_tolerance = settings_.absolute_tolerance;
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     update_pivot_kinematics(bodies_[i], states_[i]);
     // The steppers keep a reference to their body: bodies_ never reallocates after this.

@@ -87,8 +87,9 @@ class SimulateCommand : public testing::CommandTest {
 TEST_F(SimulateCommand, HelpListsEveryOption) {
   const auto help = run_command(tumble_executable() + " simulate --help");
   EXPECT_EQ(help.status, 0);
-  for (const char* option : {"SCENE", "--integrator", "--dt", "--duration", "--tolerance", "--csv",
-                             "--every", "--json", "--blowup-factor", "--list-integrators"}) {
+  for (const char* option :
+       {"SCENE", "--integrator", "--dt", "--duration", "--tolerance", "--absolute-tolerance",
+        "--csv", "--every", "--json", "--blowup-factor", "--list-integrators"}) {
     EXPECT_THAT(help.out, HasSubstr(option));
   }
 }
@@ -306,6 +307,22 @@ TEST_F(SimulateCommand, CommandLineOverridesTheScene) {
   ASSERT_EQ(tight.status, 0) << tight.err;
   EXPECT_GT(json::parse(loose.out)["bodies"][0]["orientation_error"].get<double>(),
             100 * json::parse(tight.out)["bodies"][0]["orientation_error"].get<double>());
+  // So does --absolute-tolerance: 1 rad of orientation a step lets the error grow.
+  const auto absolute =
+      simulate(file + " --integrator dopri --tolerance 1e-11 --absolute-tolerance 1 --json");
+  ASSERT_EQ(absolute.status, 0) << absolute.err;
+  EXPECT_GT(json::parse(absolute.out)["bodies"][0]["orientation_error"].get<double>(),
+            100 * json::parse(tight.out)["bodies"][0]["orientation_error"].get<double>());
+  for (const char* value : {"-1e-9", "inf", "nan"}) {
+    const auto refused =
+        simulate(file + " --integrator dopri --absolute-tolerance " + std::string(value));
+    EXPECT_EQ(refused.status, 1) << value;
+    EXPECT_THAT(refused.err, HasSubstr("--absolute-tolerance: expected a finite number >= 0"))
+        << value;
+  }
+  const auto zero_tolerance = simulate(file + " --integrator dopri --tolerance 0");
+  EXPECT_EQ(zero_tolerance.status, 1);
+  EXPECT_THAT(zero_tolerance.err, HasSubstr("--tolerance: expected a positive finite number"));
 
   const auto bad = simulate(write_scene(free_body_scene()) + " --integrator leapfrog");
   EXPECT_EQ(bad.status, 1);

@@ -225,6 +225,26 @@ TEST(SceneErrors, DurationAndStep) {
   scene = base_scene();
   scene["tolerance"] = 0;
   EXPECT_THAT(scene_error_of(scene), HasSubstr("tolerance: expected a positive number"));
+  scene = base_scene();
+  scene["absolute_tolerance"] = -1e-9;
+  EXPECT_THAT(scene_error_of(scene),
+              HasSubstr("absolute_tolerance: expected a number >= 0, got -1e-09"));
+  scene = base_scene();
+  scene["absolute_tolerance"] = "small";
+  EXPECT_THAT(scene_error_of(scene), HasSubstr("absolute_tolerance: expected a number"));
+}
+
+TEST(SceneTolerances, ReachTheSimulationSettings) {
+  json scene = base_scene();
+  EXPECT_FALSE(parse_scene(scene.dump(), kSceneFile).absolute_tolerance.has_value());
+  scene["tolerance"] = 1e-7;
+  scene["absolute_tolerance"] = 0.0;  // zero is allowed: a purely relative norm
+  EXPECT_EQ(parse_scene(scene.dump(), kSceneFile).absolute_tolerance, 0.0);
+  scene["absolute_tolerance"] = 1e-9;
+  const engine::SimulationSettings settings =
+      simulation_settings(parse_scene(scene.dump(), kSceneFile));
+  EXPECT_EQ(settings.tolerance, 1e-7);
+  EXPECT_EQ(settings.absolute_tolerance, 1e-9);
 }
 
 TEST(SceneErrors, UnknownIntegratorListsTheValidNames) {

@@ -16,8 +16,8 @@ namespace {
 
 using ::testing::HasSubstr;
 
-constexpr Modifiers kCtrl{true, false, false};
-constexpr Modifiers kShift{false, true, false};
+constexpr Modifiers kScriptCtrl{true, false, false};
+constexpr Modifiers kScriptShift{false, true, false};
 
 // --- Scripts ---------------------------------------------------------------------------------
 
@@ -44,10 +44,10 @@ TEST(ViewerScript, KeyStrokeIsPressReleaseAndModifiersUp) {
   for (const ScriptStep& step : steps) EXPECT_EQ(step.time, 1.5);
   EXPECT_EQ(as<KeyEvent>(steps[0]).key, Key::kP);
   EXPECT_TRUE(as<KeyEvent>(steps[0]).down);
-  EXPECT_EQ(as<KeyEvent>(steps[0]).modifiers, kCtrl);
+  EXPECT_EQ(as<KeyEvent>(steps[0]).modifiers, kScriptCtrl);
   EXPECT_EQ(as<KeyEvent>(steps[1]).key, Key::kP);
   EXPECT_FALSE(as<KeyEvent>(steps[1]).down);
-  EXPECT_EQ(as<KeyEvent>(steps[1]).modifiers, kCtrl);
+  EXPECT_EQ(as<KeyEvent>(steps[1]).modifiers, kScriptCtrl);
   // The modifiers let go, as a window reports the release of Ctrl itself.
   EXPECT_EQ(as<KeyEvent>(steps[2]).key, Key::kUnknown);
   EXPECT_FALSE(as<KeyEvent>(steps[2]).down);
@@ -65,7 +65,7 @@ TEST(ViewerScript, KeyDownAndUp) {
   EXPECT_EQ(steps[0].time, 0.25);
   EXPECT_EQ(as<KeyEvent>(steps[0]).key, Key::kRight);
   EXPECT_TRUE(as<KeyEvent>(steps[0]).down);
-  EXPECT_EQ(as<KeyEvent>(steps[0]).modifiers, kShift);
+  EXPECT_EQ(as<KeyEvent>(steps[0]).modifiers, kScriptShift);
   EXPECT_EQ(steps[1].time, 0.5);
   EXPECT_FALSE(as<KeyEvent>(steps[1]).down);
 }
@@ -300,7 +300,7 @@ TEST(ViewerScript, KeyDownOfAChordLeavesTheModifiersHeld) {
   const auto up = parse("0 keyup ctrl+p\n");
   ASSERT_EQ(up.size(), 1u);
   EXPECT_FALSE(as<KeyEvent>(up[0]).down);
-  EXPECT_EQ(as<KeyEvent>(up[0]).modifiers, kCtrl);
+  EXPECT_EQ(as<KeyEvent>(up[0]).modifiers, kScriptCtrl);
 }
 
 TEST(ViewerScript, DragWithAnotherButtonUsesItForPressAndRelease) {

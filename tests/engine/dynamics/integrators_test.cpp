@@ -502,8 +502,11 @@ TEST(Dopri, DenseOutputIsAccurateAndLeavesTheStepsAlone) {
     EXPECT_GT(worst, 0.0);
     ASSERT_TRUE(stepper->counts().has_value());
     counts.push_back(*stepper->counts());
-    // First same as last: one evaluation to start, then six per attempt.
-    EXPECT_EQ(counts.back().evaluations, 1 + 6 * (counts.back().accepted + counts.back().rejected));
+    // First same as last: one evaluation to start, then six per attempt, and (a torque-free
+    // body) one after each accepted step whose energy was restored, which turns q.
+    const std::size_t attempts = counts.back().accepted + counts.back().rejected;
+    EXPECT_GT(counts.back().evaluations, 1 + 6 * attempts);
+    EXPECT_LE(counts.back().evaluations, 1 + 6 * attempts + counts.back().accepted);
   }
   // The step sequence is the controller's alone (at most a step more to cover a later end).
   EXPECT_GT(counts[0].accepted, 20u);

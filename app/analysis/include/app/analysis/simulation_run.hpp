@@ -27,7 +27,8 @@ struct SimulateOptions {
   std::optional<std::string> integrator;
   std::optional<double> dt;
   std::optional<double> duration;
-  std::optional<double> tolerance;
+  std::optional<double> tolerance;           ///< relative tolerance of adaptive integrators
+  std::optional<double> absolute_tolerance;  ///< their absolute tolerance
   std::optional<double> blowup_factor;
   std::optional<std::filesystem::path> csv;
   long long every = 1;  ///< record every Nth step (the first and the last always)

@@ -29,7 +29,8 @@ struct StabilityCase {
   /// The energy that relative energy changes are divided by, J (absent: |E0|).
   std::optional<double> energy_scale;
   double blowup_factor = 10.0;      ///< see engine::SimulationSettings
-  double tolerance = 1e-10;         ///< dopri's tolerance in the sweep
+  double tolerance = 1e-10;         ///< dopri's relative tolerance in the sweep
+  double absolute_tolerance = 0.0;  ///< dopri's absolute tolerance in the sweep
   std::optional<std::string> note;  ///< shown under the case's matrix
 };
 

@@ -68,11 +68,12 @@ struct BodyDescription {
 struct SceneDescription {
   std::filesystem::path file;  ///< as given (used in messages)
   std::string name;
-  double duration = 0.0;                   ///< s
-  double dt = 0.0;                         ///< s
-  std::string integrator = "rk4";          ///< a name from engine::integrator_catalog()
-  std::optional<double> tolerance;         ///< adaptive integrators only
-  std::optional<Eigen::Vector3d> gravity;  ///< m/s^2, world
+  double duration = 0.0;                     ///< s
+  double dt = 0.0;                           ///< s
+  std::string integrator = "rk4";            ///< a name from engine::integrator_catalog()
+  std::optional<double> tolerance;           ///< adaptive integrators: relative tolerance
+  std::optional<double> absolute_tolerance;  ///< adaptive integrators: absolute tolerance
+  std::optional<Eigen::Vector3d> gravity;    ///< m/s^2, world
   std::vector<BodyDescription> bodies;
   /// The scene's `render` object, kept as written for parse_render_settings (absent: defaults).
   std::optional<nlohmann::json> render;
@@ -83,7 +84,9 @@ struct SceneDescription {
 ///
 /// Top level: "duration", "dt" (required, positive, finite, dt <= duration), "bodies"
 /// (required, non-empty array); optional "name" (default: the file's stem), "integrator"
-/// (default "rk4"), "tolerance" (positive), "gravity" ([x, y, z]; absent: no gravity).
+/// (default "rk4"), "tolerance" (positive: the relative tolerance rtol of adaptive
+/// integrators), "absolute_tolerance" (>= 0: their absolute tolerance atol, in each quantity's
+/// SI unit; engine/PHYSICS.md §3), "gravity" ([x, y, z]; absent: no gravity).
 /// Body: "name" (default "body<i>", unique, non-empty); exactly one of "mesh" (path),
 /// "shape" (a primitive solid, app/scene/shape_field.hpp) and "inertia" ({"principal":
 /// [I1, I2, I3]} or {"tensor": [[..], [..], [..]]}); with a mesh or a shape exactly one of

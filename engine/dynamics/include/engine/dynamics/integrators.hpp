@@ -47,10 +47,19 @@ const std::vector<IntegratorInfo>& integrator_catalog();
 const IntegratorInfo& integrator_info(IntegratorKind kind);
 std::optional<IntegratorKind> integrator_from_name(std::string_view name);
 
-/// Settings shared by every stepper.
+/// Settings shared by every stepper. dopri's error norm (engine/PHYSICS.md §3): each local error
+/// (the positions, the velocities and world L as 3-vectors, the orientation as a rotation
+/// angle) against `absolute_tolerance + tolerance * |y|`, |y| the vector's length (1 for the
+/// orientation, a unit quaternion); a step is kept when no error exceeds its scale.
 struct StepSettings {
-  double tolerance = 1e-10;  ///< dopri: local error tolerance (relative and absolute)
+  double tolerance = 1e-10;         ///< dopri: relative tolerance rtol (positive, finite)
+  double absolute_tolerance = 0.0;  ///< dopri: absolute tolerance atol, in each quantity's
+                                    ///< SI unit (m, m/s, rad, kg m^2/s); >= 0, finite
 };
+
+/// What is wrong with `settings` for an adaptive integrator ("tolerance: expected ...",
+/// naming the field), or nothing.
+std::optional<std::string> step_settings_problem(const StepSettings& settings);
 
 /// What a stepper has done so far: accepted and rejected steps and right-hand-side
 /// evaluations (engine/PHYSICS.md §5).

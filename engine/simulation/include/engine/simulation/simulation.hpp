@@ -14,10 +14,11 @@ namespace tumble::engine {
 
 struct SimulationSettings {
   IntegratorKind integrator = IntegratorKind::kRk4;
-  double dt = 1e-3;             ///< s
-  double duration = 1.0;        ///< s
-  double tolerance = 1e-10;     ///< for adaptive integrators
-  double blowup_factor = 10.0;  ///< energy or |L| growth that counts as a blow-up
+  double dt = 1e-3;                 ///< s
+  double duration = 1.0;            ///< s
+  double tolerance = 1e-10;         ///< adaptive integrators: relative tolerance (StepSettings)
+  double absolute_tolerance = 0.0;  ///< adaptive integrators: absolute tolerance (StepSettings)
+  double blowup_factor = 10.0;      ///< energy or |L| growth that counts as a blow-up
 };
 
 /// Where and why a run blew up.
