@@ -29,7 +29,7 @@ struct Renderer::Impl {
 
 Renderer::Renderer(const RendererOptions& options) : impl_(std::make_unique<Impl>(options)) {
   impl_->context.make_current();
-  impl_->scene = std::make_unique<detail::ScenePasses>(options.lod);
+  impl_->scene = std::make_unique<detail::ScenePasses>(options.lod, options.reuse_static_layers);
   if (impl_->context.has_post_process())
     impl_->fxaa = std::make_unique<detail::FxaaPass>(options.width, options.height);
 }
