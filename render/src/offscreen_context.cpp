@@ -244,7 +244,7 @@ bool OffscreenContext::store_scene() {
     }
     impl_->layers = std::move(*made);
   }
-  copy_colour_and_depth(impl_->draw.fbo.get(), impl_->layers.fbo.get());
+  copy_colour_and_depth(impl_->draw.fbo.get(), impl_->layers.fbo.get(), /*depth=*/true);
   return true;
 }
 
@@ -252,18 +252,19 @@ bool OffscreenContext::has_stored_scene() const {
   return static_cast<bool>(impl_->layers.fbo);
 }
 
-void OffscreenContext::restore_scene() {
+void OffscreenContext::restore_scene(bool depth) {
   if (!impl_->layers.fbo) throw std::logic_error("offscreen context: no stored scene to restore");
-  copy_colour_and_depth(impl_->layers.fbo.get(), impl_->draw.fbo.get());
+  copy_colour_and_depth(impl_->layers.fbo.get(), impl_->draw.fbo.get(), depth);
+  if (!depth) glClear(GL_DEPTH_BUFFER_BIT);  // llvmpipe marks its tiles cleared: no memory pass
 }
 
-void OffscreenContext::copy_colour_and_depth(unsigned int from, unsigned int to) {
+void OffscreenContext::copy_colour_and_depth(unsigned int from, unsigned int to, bool depth) {
   // Same size, samples and formats: Mesa copies the memory (no shader runs), and the depth
   // values arrive bit for bit.
   glBindFramebuffer(GL_READ_FRAMEBUFFER, from);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, to);
   glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_,
-                    GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+                    GL_COLOR_BUFFER_BIT | (depth ? GL_DEPTH_BUFFER_BIT : 0), GL_NEAREST);
   glBindFramebuffer(GL_FRAMEBUFFER, impl_->fbo(target_));
 }
 

@@ -49,7 +49,7 @@ bool ScenePasses::static_layers(const DrawList& frame, const GroundPlacement& gr
     append_static_key(static_key_, style.ground_colour);
   }
   if (static_key_ == stored_static_key_ && context.has_stored_scene()) {
-    context.restore_scene();
+    context.restore_scene(/*depth=*/style.ground);  // the background writes no depth
     return true;
   }
 

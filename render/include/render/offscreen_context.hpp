@@ -58,9 +58,10 @@ class OffscreenContext {
   bool store_scene();
   /// True when store_scene() stored a copy since the framebuffers were last made.
   bool has_stored_scene() const;
-  /// Copies the stored colour and depth back into the scene FBO, bit for bit. Throws
-  /// std::logic_error when nothing is stored (a resize drops the stored copy).
-  void restore_scene();
+  /// Copies the stored colour and depth back into the scene FBO, bit for bit; with `depth`
+  /// false, only the colour, and the depth is cleared instead (for stored layers that wrote no
+  /// depth). Throws std::logic_error when nothing is stored (a resize drops the stored copy).
+  void restore_scene(bool depth = true);
 
   int width() const { return width_; }
   int height() const { return height_; }
@@ -70,8 +71,8 @@ class OffscreenContext {
  private:
   /// (Re)creates the framebuffers at width_ x height_ with up to samples_ samples.
   void make_framebuffers(bool post_process);
-  /// Blits colour and depth between two FBOs of this context's size; leaves the target bound.
-  void copy_colour_and_depth(unsigned int from, unsigned int to);
+  /// Blits colour (and depth) between two FBOs of this context's size; leaves the target bound.
+  void copy_colour_and_depth(unsigned int from, unsigned int to, bool depth);
 
   struct Impl;
   std::unique_ptr<Impl> impl_;
