@@ -47,7 +47,7 @@ Eigen::Matrix4f light_matrix(const Eigen::Vector3f& from, const Eigen::Vector3f&
 
 }  // namespace
 
-ScenePasses::ScenePasses(bool lod, bool reuse_static_layers)
+ScenePasses::ScenePasses(bool lod, bool reuse_static_layers, bool smooth_lines)
     : background_program_("background", shaders::kBackgroundVertex, shaders::kBackgroundFragment),
       mesh_program_("mesh", shaders::kMeshVertex, shaders::kMeshFragment),
       shadow_program_("shadow", shaders::kShadowVertex, shaders::kShadowFragment),
@@ -56,13 +56,14 @@ ScenePasses::ScenePasses(bool lod, bool reuse_static_layers)
       shadowed_ground_program_(
           "shadowed ground", shaders::kGroundVertex,
           std::string("#version 330 core\n#define SHADOWS 1\n") + shaders::kGroundFragmentBody),
-      line_program_("polyline", shaders::kLineVertex, shaders::kFlatFragment,
+      line_program_("polyline", shaders::kLineVertex, shaders::kLineFragment,
                     shaders::kLineGeometry),
       point_program_("points", shaders::kPointVertex, shaders::kPointFragment),
       cylinder_(upload_mesh(unit_cylinder(24))),
       cone_(upload_mesh(unit_cone(24))),
       lod_(lod),
-      reuse_static_layers_(reuse_static_layers) {
+      reuse_static_layers_(reuse_static_layers),
+      smooth_lines_(smooth_lines) {
   // The background triangle needs a (any) vertex array bound in a core profile.
   empty_vao_ = GlVertexArray::create();
 
@@ -362,6 +363,7 @@ void ScenePasses::draw_lines_and_points(const DrawList& frame, int width, int he
   set_matrix(line_program_, "view_projection", view_projection_);
   glUniform2f(line_program_.uniform("viewport"), static_cast<float>(width),
               static_cast<float>(height));
+  glUniform1f(line_program_.uniform("smooth_edges"), smooth_lines_ ? 1.0f : 0.0f);
   for (const Polyline& line : frame.polylines) {
     const auto count = static_cast<GLsizei>(line.points.size());
     if (count >= 2) {

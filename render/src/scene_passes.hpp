@@ -20,7 +20,8 @@ class ScenePasses {
   /// `reuse_static_layers`: while the camera, size and style stay, start each frame from a
   /// stored copy of the background and unshadowed ground (colour and depth) instead of
   /// drawing them again; the image is the same pixel for pixel.
-  explicit ScenePasses(bool lod = true, bool reuse_static_layers = true);
+  /// `smooth_lines`: polylines get their edge pixels' coverage as alpha (anti-aliased lines).
+  explicit ScenePasses(bool lod = true, bool reuse_static_layers = true, bool smooth_lines = false);
   ScenePasses(const ScenePasses&) = delete;
   ScenePasses& operator=(const ScenePasses&) = delete;
 
@@ -95,6 +96,7 @@ class ScenePasses {
   bool shadow_valid_ = false;
   bool lod_ = true;
   bool reuse_static_layers_ = true;
+  bool smooth_lines_ = false;
   std::vector<float> static_key_;         // what the static layers depend on, this frame
   std::vector<float> stored_static_key_;  // and when they were stored (empty: nothing stored)
   std::size_t triangles_ = 0;
