@@ -99,6 +99,7 @@ class ScenePasses {
   bool smooth_lines_ = false;
   std::vector<float> static_key_;         // what the static layers depend on, this frame
   std::vector<float> stored_static_key_;  // and when they were stored (empty: nothing stored)
+  std::vector<float> last_static_key_;    // the last frame's (stored only on a repeat)
   std::size_t triangles_ = 0;
 };
 

@@ -1,10 +1,12 @@
 // The layers of a frame that stay while the camera stays: the background gradient and the
 // ground outside the shadow's patch. They are drawn once into the scene FBO, stored (colour and
 // depth) and, while the frame's key is unchanged, restored at the start of each later frame by
-// a plain memory copy, which costs less than shading them again on llvmpipe. Everything that
-// moves (solids, the shadowed patch, lines, points, translucent solids) is drawn on top as
-// before; because solids are opaque and the stored depth is what the ground and the background
-// would have left, the image is the same pixel for pixel (tests/render/static_layers_test.cpp).
+// a plain memory copy, which costs less than shading them again on llvmpipe. They are stored
+// on the second frame with the same key, so a camera that moves every frame stores nothing.
+// Everything that moves (solids, the shadowed patch, lines, points, translucent solids) is drawn on
+// top as before; because solids are opaque and the stored depth is what the ground and the
+// background would have left, the image is the same pixel for pixel
+// (tests/render/static_layers_test.cpp).
 #include <Eigen/Core>
 #include <initializer_list>
 
@@ -52,6 +54,11 @@ bool ScenePasses::static_layers(const DrawList& frame, const GroundPlacement& gr
     context.restore_scene(/*depth=*/style.ground);  // the background writes no depth
     return true;
   }
+  // Stored only when a frame repeats the last one's key: a camera that moves every frame would
+  // pay for a copy it never uses.
+  const bool repeated = static_key_ == last_static_key_;
+  last_static_key_ = static_key_;
+  if (!repeated) return false;
 
   glClear(GL_DEPTH_BUFFER_BIT);
   if (style.ground) draw_ground_part(frame, ground, 1, context.height());
