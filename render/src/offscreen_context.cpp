@@ -109,6 +109,7 @@ struct OffscreenContext::Impl {
       resolve;  // single-sampled copy read back when drawing is multisampled
   detail::OffscreenFramebuffer
       output;  // the post-process's result (draw's colour is then a texture)
+  detail::OffscreenFramebuffer layers;  // a stored copy of draw's colour and depth, made lazily
   std::vector<std::uint8_t> bottom_up;  // glReadPixels rows, flipped into the Image
 
   /// The FBO draws go to for `target`.
@@ -177,6 +178,7 @@ void OffscreenContext::make_framebuffers(bool post_process) {
   impl_->draw = std::move(*draw);
   impl_->resolve = std::move(resolve);
   impl_->output = std::move(output);
+  impl_->layers = Framebuffer{};  // the old size's copy: made again by the next store
   samples_ = wanted;
   glBindFramebuffer(GL_FRAMEBUFFER, impl_->fbo(target_));
   glViewport(0, 0, width_, height_);
@@ -228,6 +230,41 @@ void OffscreenContext::copy_scene_to_output() {
   glBindFramebuffer(GL_READ_FRAMEBUFFER, impl_->draw.fbo.get());
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, impl_->output.fbo.get());
   glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, impl_->fbo(target_));
+}
+
+bool OffscreenContext::store_scene() {
+  make_current();
+  if (!impl_->layers.fbo) {
+    std::optional<Framebuffer> made =
+        make_framebuffer(width_, height_, samples_, /*with_depth=*/true);
+    if (!made) {
+      make_current();
+      return false;  // no copy: the caller draws every layer every frame
+    }
+    impl_->layers = std::move(*made);
+  }
+  copy_colour_and_depth(impl_->draw.fbo.get(), impl_->layers.fbo.get(), /*depth=*/true);
+  return true;
+}
+
+bool OffscreenContext::has_stored_scene() const {
+  return static_cast<bool>(impl_->layers.fbo);
+}
+
+void OffscreenContext::restore_scene(bool depth) {
+  if (!impl_->layers.fbo) throw std::logic_error("offscreen context: no stored scene to restore");
+  copy_colour_and_depth(impl_->layers.fbo.get(), impl_->draw.fbo.get(), depth);
+  if (!depth) glClear(GL_DEPTH_BUFFER_BIT);  // llvmpipe marks its tiles cleared: no memory pass
+}
+
+void OffscreenContext::copy_colour_and_depth(unsigned int from, unsigned int to, bool depth) {
+  // Same size, samples and formats: Mesa copies the memory (no shader runs), and the depth
+  // values arrive bit for bit.
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, from);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, to);
+  glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_,
+                    GL_COLOR_BUFFER_BIT | (depth ? GL_DEPTH_BUFFER_BIT : 0), GL_NEAREST);
   glBindFramebuffer(GL_FRAMEBUFFER, impl_->fbo(target_));
 }
 

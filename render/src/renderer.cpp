@@ -29,7 +29,10 @@ struct Renderer::Impl {
 
 Renderer::Renderer(const RendererOptions& options) : impl_(std::make_unique<Impl>(options)) {
   impl_->context.make_current();
-  impl_->scene = std::make_unique<detail::ScenePasses>(options.lod);
+  // Lines carry their own coverage whenever the frame is anti-aliased at all.
+  const bool smooth_lines = options.filter != AntialiasingFilter::none || options.samples > 1;
+  impl_->scene =
+      std::make_unique<detail::ScenePasses>(options.lod, options.reuse_static_layers, smooth_lines);
   if (impl_->context.has_post_process())
     impl_->fxaa = std::make_unique<detail::FxaaPass>(options.width, options.height);
 }

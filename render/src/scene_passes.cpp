@@ -47,7 +47,7 @@ Eigen::Matrix4f light_matrix(const Eigen::Vector3f& from, const Eigen::Vector3f&
 
 }  // namespace
 
-ScenePasses::ScenePasses(bool lod)
+ScenePasses::ScenePasses(bool lod, bool reuse_static_layers, bool smooth_lines)
     : background_program_("background", shaders::kBackgroundVertex, shaders::kBackgroundFragment),
       mesh_program_("mesh", shaders::kMeshVertex, shaders::kMeshFragment),
       shadow_program_("shadow", shaders::kShadowVertex, shaders::kShadowFragment),
@@ -56,12 +56,14 @@ ScenePasses::ScenePasses(bool lod)
       shadowed_ground_program_(
           "shadowed ground", shaders::kGroundVertex,
           std::string("#version 330 core\n#define SHADOWS 1\n") + shaders::kGroundFragmentBody),
-      line_program_("polyline", shaders::kLineVertex, shaders::kFlatFragment,
+      line_program_("polyline", shaders::kLineVertex, shaders::kLineFragment,
                     shaders::kLineGeometry),
       point_program_("points", shaders::kPointVertex, shaders::kPointFragment),
       cylinder_(upload_mesh(unit_cylinder(24))),
       cone_(upload_mesh(unit_cone(24))),
-      lod_(lod) {
+      lod_(lod),
+      reuse_static_layers_(reuse_static_layers),
+      smooth_lines_(smooth_lines) {
   // The background triangle needs a (any) vertex array bound in a core profile.
   empty_vao_ = GlVertexArray::create();
 
@@ -104,11 +106,16 @@ void ScenePasses::draw(const DrawList& frame, const std::vector<GpuMesh>& meshes
 
   // Opaque solids first, then the ground and the background, which only fill what is left
   // (llvmpipe skips depth-rejected pixels early), then lines, points and translucent solids.
+  // With static layers, the background and the ground outside the shadow's patch come first,
+  // from a stored copy; the solids then overwrite them where they are nearer, which leaves
+  // the same pixels (the ground's rest is pushed back by its polygon offset either way).
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LEQUAL);
   glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);
-  glClear(GL_DEPTH_BUFFER_BIT);
+  const GroundPlacement ground = place_ground(frame);
+  const bool static_layers_drawn = static_layers(frame, ground, context);
+  if (!static_layers_drawn) glClear(GL_DEPTH_BUFFER_BIT);
   mesh_program_.use();
   const Eigen::Vector3f key = frame.style.key_light_from.normalized();
   const Eigen::Vector3f to_eye = (frame.camera.eye - frame.camera.target).normalized();
@@ -118,8 +125,11 @@ void ScenePasses::draw(const DrawList& frame, const std::vector<GpuMesh>& meshes
   set_vector(mesh_program_, "fill_direction", fill);
   set_vector(mesh_program_, "sky_up", frame.style.ground_normal.normalized());
   draw_solids(false);
-  if (frame.style.ground) draw_ground(frame, height);
-  draw_background(frame.style);
+  if (frame.style.ground) {
+    draw_ground_part(frame, ground, 0, height);
+    if (!static_layers_drawn) draw_ground_part(frame, ground, 1, height);
+  }
+  if (!static_layers_drawn) draw_background(frame.style);
   draw_lines_and_points(frame, width, height);
   draw_solids(true);
   glBindVertexArray(0);
@@ -230,61 +240,66 @@ void ScenePasses::draw_background(const SceneStyle& style) {
   glDepthMask(GL_TRUE);
 }
 
-void ScenePasses::draw_ground(const DrawList& frame, int height) {
+ScenePasses::GroundPlacement ScenePasses::place_ground(const DrawList& frame) const {
   const SceneStyle& style = frame.style;
+  GroundPlacement placed;
   const Eigen::Vector3f normal = style.ground_normal.normalized();
   // Centred under the camera's target, large enough to fade out well beyond the scene.
   const Eigen::Vector3f target = frame.camera.target;
-  const Eigen::Vector3f centre = target - normal * (normal.dot(target) - style.ground_height);
-  const float half_size = 4.0f * std::max((frame.camera.eye - target).norm(), scene_radius_);
-  const Eigen::Vector3f axis_u = normal.unitOrthogonal();
-  const Eigen::Vector3f axis_v = normal.cross(axis_u);
+  placed.centre = target - normal * (normal.dot(target) - style.ground_height);
+  placed.half_size = 4.0f * std::max((frame.camera.eye - target).norm(), scene_radius_);
+  placed.axis_u = normal.unitOrthogonal();
+  placed.axis_v = normal.cross(placed.axis_u);
 
   // Shadow taps are costly on llvmpipe: only the patch of ground a shadow can reach (the scene's
   // bounding sphere swept along the light) uses the shadowed program; the rest of the ground is
-  // drawn after it, pushed back by a polygon offset so it does not overwrite the patch.
+  // drawn without, pushed back by a polygon offset so it does not overwrite the patch.
   const Eigen::Vector3f key = style.key_light_from.normalized();
   const float cos_light = normal.dot(key);
-  const bool patch = shadow_valid_ && cos_light > 0.1f;
-  const Eigen::Vector3f patch_centre =
+  placed.patch = shadow_valid_ && cos_light > 0.1f;
+  placed.patch_centre =
       scene_centre_ - key * (normal.dot(scene_centre_) - style.ground_height) / cos_light;
-  const float patch_half_size = 1.1f * scene_radius_ / std::max(cos_light, 0.1f);
+  placed.patch_half_size = 1.1f * scene_radius_ / std::max(cos_light, 0.1f);
+  return placed;
+}
 
+void ScenePasses::draw_ground_part(const DrawList& frame, const GroundPlacement& ground, int part,
+                                   int height) {
+  if (part == 0 && !ground.patch) return;
+  const SceneStyle& style = frame.style;
+  const bool shadowed = part == 0 || (shadow_valid_ && !ground.patch);
+  GlProgram& program = shadowed ? shadowed_ground_program_ : ground_program_;
   glBindVertexArray(ground_vao_.get());
-  for (int part = 0; part < 2; ++part) {
-    const bool shadowed = part == 0 ? patch : (shadow_valid_ && !patch);
-    if (part == 0 && !patch) continue;
-    GlProgram& program = shadowed ? shadowed_ground_program_ : ground_program_;
-    program.use();
-    set_vector(program, "quad_centre", part == 0 ? patch_centre : centre);
-    glUniform1f(program.uniform("quad_half_size"), part == 0 ? patch_half_size : half_size);
-    set_vector(program, "ground_centre", centre);
-    glUniform1f(program.uniform("ground_half_size"), half_size);
-    set_vector(program, "axis_u", axis_u);
-    set_vector(program, "axis_v", axis_v);
-    set_matrix(program, "view_projection", view_projection_);
-    set_colour(program, style.ground_colour);
-    set_vector(program, "normal", normal);
-    set_vector(program, "key_direction", key);
-    if (shadowed) {
-      set_matrix(program, "light_view_projection", light_view_projection_);
-      glActiveTexture(GL_TEXTURE0);
-      glBindTexture(GL_TEXTURE_2D, shadow_texture_.get());
-      glUniform1i(program.uniform("shadow_map"), 0);
-      glUniform1f(program.uniform("texel"), 1.0f / kShadowMapSize);
-    }
-    const Rgba& top = style.background_top;
-    const Rgba& bottom = style.background_bottom;
-    glUniform4f(program.uniform("background_top"), top.r, top.g, top.b, 1.0f);
-    glUniform4f(program.uniform("background_bottom"), bottom.r, bottom.g, bottom.b, 1.0f);
-    glUniform1f(program.uniform("viewport_height"), static_cast<float>(height));
-    if (part == 1 && patch) {
-      glEnable(GL_POLYGON_OFFSET_FILL);
-      glPolygonOffset(1.0f, 4.0f);
-    }
-    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
-    glDisable(GL_POLYGON_OFFSET_FILL);
+  program.use();
+  set_vector(program, "quad_centre", part == 0 ? ground.patch_centre : ground.centre);
+  glUniform1f(program.uniform("quad_half_size"),
+              part == 0 ? ground.patch_half_size : ground.half_size);
+  set_vector(program, "ground_centre", ground.centre);
+  glUniform1f(program.uniform("ground_half_size"), ground.half_size);
+  set_vector(program, "axis_u", ground.axis_u);
+  set_vector(program, "axis_v", ground.axis_v);
+  set_matrix(program, "view_projection", view_projection_);
+  set_colour(program, style.ground_colour);
+  set_vector(program, "normal", style.ground_normal.normalized());
+  set_vector(program, "key_direction", style.key_light_from.normalized());
+  if (shadowed) {
+    set_matrix(program, "light_view_projection", light_view_projection_);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, shadow_texture_.get());
+    glUniform1i(program.uniform("shadow_map"), 0);
+    glUniform1f(program.uniform("texel"), 1.0f / kShadowMapSize);
   }
+  const Rgba& top = style.background_top;
+  const Rgba& bottom = style.background_bottom;
+  glUniform4f(program.uniform("background_top"), top.r, top.g, top.b, 1.0f);
+  glUniform4f(program.uniform("background_bottom"), bottom.r, bottom.g, bottom.b, 1.0f);
+  glUniform1f(program.uniform("viewport_height"), static_cast<float>(height));
+  if (part == 1 && ground.patch) {
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(1.0f, 4.0f);
+  }
+  glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+  glDisable(GL_POLYGON_OFFSET_FILL);
 }
 
 void ScenePasses::draw_solids(bool translucent) {
@@ -348,6 +363,7 @@ void ScenePasses::draw_lines_and_points(const DrawList& frame, int width, int he
   set_matrix(line_program_, "view_projection", view_projection_);
   glUniform2f(line_program_.uniform("viewport"), static_cast<float>(width),
               static_cast<float>(height));
+  glUniform1f(line_program_.uniform("smooth_edges"), smooth_lines_ ? 1.0f : 0.0f);
   for (const Polyline& line : frame.polylines) {
     const auto count = static_cast<GLsizei>(line.points.size());
     if (count >= 2) {

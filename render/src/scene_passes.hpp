@@ -17,7 +17,11 @@ class ScenePasses {
   /// Compiles the programs and builds the arrow shapes; needs the context current, also when
   /// it is destroyed (its members own the GL objects).
   /// `lod`: draw large meshes from their simplified copies where those are under a pixel off.
-  explicit ScenePasses(bool lod = true);
+  /// `reuse_static_layers`: while the camera, size and style stay, start each frame from a
+  /// stored copy of the background and unshadowed ground (colour and depth) instead of
+  /// drawing them again; the image is the same pixel for pixel.
+  /// `smooth_lines`: polylines get their edge pixels' coverage as alpha (anti-aliased lines).
+  explicit ScenePasses(bool lod = true, bool reuse_static_layers = true, bool smooth_lines = false);
   ScenePasses(const ScenePasses&) = delete;
   ScenePasses& operator=(const ScenePasses&) = delete;
 
@@ -39,11 +43,29 @@ class ScenePasses {
     float scale = 1.0f;     // largest axis scale of `model`
   };
 
+  /// Where the ground goes this frame: the whole square, and the patch a shadow can reach.
+  struct GroundPlacement {
+    Eigen::Vector3f centre;
+    float half_size;
+    Eigen::Vector3f axis_u;
+    Eigen::Vector3f axis_v;
+    bool patch;  // the patch is drawn with the shadowed program, the rest without
+    Eigen::Vector3f patch_centre;
+    float patch_half_size;
+  };
+
   void collect_solids(const DrawList& frame, const std::vector<GpuMesh>& meshes,
                       const Eigen::Matrix4f& view, int height);
   void draw_shadow_map(const DrawList& frame);
   void draw_background(const SceneStyle& style);
-  void draw_ground(const DrawList& frame, int height);
+  GroundPlacement place_ground(const DrawList& frame) const;
+  /// Part 0: the shadowed patch (when placed); part 1: the rest of the ground, behind the patch.
+  void draw_ground_part(const DrawList& frame, const GroundPlacement& ground, int part, int height);
+  /// The layers that do not move (background, the ground outside the shadow's patch): restored
+  /// from the stored copy when this frame's key matches it, else drawn and stored. False when
+  /// they cannot be stored (reuse off, or the whole ground shadowed): draw() draws them itself.
+  bool static_layers(const DrawList& frame, const GroundPlacement& ground,
+                     OffscreenContext& context);
   void draw_solids(bool translucent);
   void draw_lines_and_points(const DrawList& frame, int width, int height);
 
@@ -73,6 +95,11 @@ class ScenePasses {
   float scene_radius_ = 0.0f;
   bool shadow_valid_ = false;
   bool lod_ = true;
+  bool reuse_static_layers_ = true;
+  bool smooth_lines_ = false;
+  std::vector<float> static_key_;         // what the static layers depend on, this frame
+  std::vector<float> stored_static_key_;  // and when they were stored (empty: nothing stored)
+  std::vector<float> last_static_key_;    // the last frame's (stored only on a repeat)
   std::size_t triangles_ = 0;
 };
 

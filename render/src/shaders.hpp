@@ -128,12 +128,17 @@ uniform mat4 view_projection;
 void main() { gl_Position = view_projection * vec4(position, 1.0); })";
 
 /// Expands each segment into a screen-space quad of constant pixel width (with square caps
-/// half a width long, which closes the joints of a polyline); clips at the near plane.
+/// half a width long, which closes the joints of a polyline); clips at the near plane. The quad
+/// is a pixel wider on each side than the line, and `across_px` (the distance from the centre
+/// line, in pixels) lets the fragment shader give the edge pixels their coverage: a box filter
+/// of the line's true width, so lines are anti-aliased by themselves (when anti-aliasing is on;
+/// the image filter alone hardly softens a two-pixel line).
 inline constexpr const char* kLineGeometry = R"(#version 330 core
 layout(lines) in;
 layout(triangle_strip, max_vertices = 4) out;
 uniform vec2 viewport;
 uniform float half_width;
+out float across_px;
 void main() {
   vec4 a = gl_in[0].gl_Position;
   vec4 b = gl_in[1].gl_Position;
@@ -146,20 +151,34 @@ void main() {
   vec2 d = sb - sa;
   float len = length(d);
   vec2 dir = len > 1e-6 ? d / len : vec2(1.0, 0.0);
-  vec2 side = vec2(-dir.y, dir.x) * half_width;
+  float reach = half_width + 1.0;
+  vec2 side = vec2(-dir.y, dir.x) * reach;
   vec2 cap = dir * half_width;
   vec2 to_ndc = 2.0 / viewport;
+  across_px = reach;
   gl_Position = vec4((sa - cap + side) * to_ndc * a.w, a.z, a.w); EmitVertex();
+  across_px = -reach;
   gl_Position = vec4((sa - cap - side) * to_ndc * a.w, a.z, a.w); EmitVertex();
+  across_px = reach;
   gl_Position = vec4((sb + cap + side) * to_ndc * b.w, b.z, b.w); EmitVertex();
+  across_px = -reach;
   gl_Position = vec4((sb + cap - side) * to_ndc * b.w, b.z, b.w); EmitVertex();
   EndPrimitive();
 })";
 
-inline constexpr const char* kFlatFragment = R"(#version 330 core
+/// A line's colour with its coverage of the pixel (see kLineGeometry) as alpha.
+inline constexpr const char* kLineFragment = R"(#version 330 core
 uniform vec4 base_colour;
+uniform float half_width;
+uniform float smooth_edges;  // 1: coverage; 0: aliased, as drawn without anti-aliasing
+in float across_px;
 out vec4 colour;
-void main() { colour = base_colour; })";
+void main() {
+  float inside = abs(across_px) <= half_width ? 1.0 : 0.0;
+  float coverage = mix(inside, clamp(half_width + 0.5 - abs(across_px), 0.0, 1.0), smooth_edges);
+  if (coverage <= 0.0) discard;
+  colour = vec4(base_colour.rgb, base_colour.a * coverage);
+})";
 
 inline constexpr const char* kPointVertex = R"(#version 330 core
 layout(location = 0) in vec3 position;

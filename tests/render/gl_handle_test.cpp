@@ -251,10 +251,13 @@ TEST(ScenePasses, ManyPassesLeaveNoGlObjectBehind) {
   for (int i = 0; i < 5; ++i) {
     ScenePasses passes;
     passes.draw(frame, meshes, context);
+    passes.draw(frame, meshes, context);  // the same camera again: the static layers are stored
     if (i == 0) {
       const LiveObjects during;
-      EXPECT_EQ(during.textures, before.textures + 1);          // the shadow map
-      EXPECT_EQ(during.framebuffers, before.framebuffers + 1);  // and its framebuffer
+      EXPECT_EQ(during.textures, before.textures + 1);  // the shadow map
+      // Its framebuffer, and the context's stored copy of the static layers (colour and depth).
+      EXPECT_EQ(during.framebuffers, before.framebuffers + 2);
+      EXPECT_EQ(during.renderbuffers, before.renderbuffers + 2);
       EXPECT_EQ(during.programs, before.programs + 7);
       EXPECT_GT(during.buffers, before.buffers + 4);
     }
@@ -264,6 +267,14 @@ TEST(ScenePasses, ManyPassesLeaveNoGlObjectBehind) {
   // Mesa keeps the last program used alive (flagged for deletion) as the context's active
   // program; it is deleted, only not yet freed.
   EXPECT_LE(live(glIsProgram), before.programs + 1);
+  // The context keeps its one stored copy of the static layers (made once, however many passes
+  // stored into it) until it goes or is resized.
+  LiveObjects expected = before;
+  expected.framebuffers += 1;
+  expected.renderbuffers += 2;
+  EXPECT_EQ(LiveObjects(), expected);
+  context.resize(kContextWidth + 2, kContextHeight);  // drops the stored copy
+  context.make_current();
   EXPECT_EQ(LiveObjects(), before);
 }
 

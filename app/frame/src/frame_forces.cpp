@@ -22,6 +22,10 @@ using render::Rgba;
 constexpr Rgba kSpringColour{0.90f, 0.25f, 0.15f, 1.0f};
 constexpr Rgba kStemColour{0.12f, 0.12f, 0.14f, 1.0f};
 constexpr Rgba kMarkerColour{0.97f, 0.97f, 0.97f, 1.0f};
+/// The pivot marker's diameter as a share of the frame height, and its least diameter: a dot
+/// that reads at every frame size (22 px at 720p, 65 px at 2160p, 9 px on a 270-line GIF).
+constexpr float kMarkerHeightShare = 0.03f;
+constexpr float kMarkerMinPx = 9.0f;
 /// Turns of a drawn coil, whatever its length (it stretches: the pitch changes).
 constexpr int kCoilTurns = 10;
 constexpr int kSegmentsPerTurn = 20;
@@ -116,7 +120,9 @@ void FrameBuilder::Impl::add_supports(const engine::BodyModel& body, const engin
         {{body.pivot.cast<float>(), support.stem_end.cast<float>()}, kStemColour, 4.0f});
     list.polylines.push_back(
         {{body.pivot.cast<float>(), state.position.cast<float>()}, kStemColour, 3.0f});
-    list.points.push_back({{body.pivot.cast<float>()}, kMarkerColour, 9.0f});
+    const float marker_px =
+        std::max(kMarkerMinPx, kMarkerHeightShare * static_cast<float>(settings.height));
+    list.points.push_back({{body.pivot.cast<float>()}, kMarkerColour, marker_px});
   }
 }
 

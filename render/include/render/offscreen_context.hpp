@@ -52,6 +52,17 @@ class OffscreenContext {
   /// leaves the target's FBO bound. Nothing without a post-process.
   void copy_scene_to_output();
 
+  /// Stores a copy of the scene FBO's colour and depth (the layers that stay from frame to
+  /// frame: background, ground), in an FBO of the same size, samples and formats made on the
+  /// first call. False (nothing stored) when that FBO cannot be made. Leaves the target bound.
+  bool store_scene();
+  /// True when store_scene() stored a copy since the framebuffers were last made.
+  bool has_stored_scene() const;
+  /// Copies the stored colour and depth back into the scene FBO, bit for bit; with `depth`
+  /// false, only the colour, and the depth is cleared instead (for stored layers that wrote no
+  /// depth). Throws std::logic_error when nothing is stored (a resize drops the stored copy).
+  void restore_scene(bool depth = true);
+
   int width() const { return width_; }
   int height() const { return height_; }
   /// Samples per pixel actually used (after clamping to GL_MAX_SAMPLES and completeness).
@@ -60,6 +71,8 @@ class OffscreenContext {
  private:
   /// (Re)creates the framebuffers at width_ x height_ with up to samples_ samples.
   void make_framebuffers(bool post_process);
+  /// Blits colour (and depth) between two FBOs of this context's size; leaves the target bound.
+  void copy_colour_and_depth(unsigned int from, unsigned int to, bool depth);
 
   struct Impl;
   std::unique_ptr<Impl> impl_;

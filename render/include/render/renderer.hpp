@@ -19,6 +19,9 @@
 //   buffers over the same vertices, each with a bound on its distance to the full surface; a
 //   frame draws the coarsest level whose bound, at the mesh's nearest depth, is under a pixel,
 //   so the outline moves by less than a pixel. Callers' data (mass properties) never change.
+// - Static layers (RendererOptions::reuse_static_layers): the background and the ground outside
+//   the shadow's patch depend only on the camera, the size and the style; they are drawn once,
+//   stored (colour and depth) and copied back at the start of each frame that shares them.
 // - Shading is per pixel: a key light (which also casts the shadow), a fill light mirrored about
 //   the view direction and a hemisphere ambient, so a tumbling body never turns black.
 // - Shadows: a 1024^2 depth map rendered from the key light (orthographic, fitted to the scene's
@@ -61,6 +64,11 @@ struct RendererOptions {
   /// is in use (samples > 1 after clamping). Off by default here, so golden images stay
   /// aliased; `tumble render` and `tumble compare` choose fxaa unless told otherwise.
   AntialiasingFilter filter = AntialiasingFilter::none;
+  /// While the camera, the image size and the scene style stay from one frame to the next,
+  /// start each frame from a stored copy (colour and depth) of the background and the
+  /// unshadowed ground instead of drawing them again. The image is the same pixel for pixel;
+  /// false draws every layer every frame (for comparisons).
+  bool reuse_static_layers = true;
 };
 
 /// Drawing a caller adds on top of a frame (the viewer's interactive ImGui panels).

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <nlohmann/json.hpp>
+#include <utility>
 
 #include "app/frame/frame_builder.hpp"
 #include "frame_scene_setup.hpp"
@@ -144,6 +146,37 @@ TEST(FrameForces, PivotHasAMarkerAndAStemUpFromAHangingBody) {
   }
   EXPECT_TRUE(stem);
   EXPECT_TRUE(link);
+}
+
+// The marker's diameter against the frame height it is laid out for: 3% of it (9 px at least),
+// so its share of the frame's area stays the same from 720p to 2160p and a small GIF still
+// shows a 9 px dot (a fixed 9 px dot was 0.007% of a 720p frame and 0.0008% of a 2160p one).
+TEST(FrameForces, PivotMarkerKeepsItsShareOfTheFrameAtEverySize) {
+  const ForcesScene setup(R"({"duration": 1, "dt": 0.002, "gravity": [0, 0, -9.81],
+    "bodies": [{"name": "cube", "shape": {"box": [0.2, 0.2, 0.2]}, "mass": 1,
+      "pivot": [0, 0, 0.5]}],
+    "render": {"show": {"overlay": false}}})");
+  engine::Simulation simulation(setup.scene.bodies, setup.scene.initial, setup.scene.settings);
+  FrameBuilder builder(setup.description, setup.scene, setup.settings, forces_renderer());
+  builder.observe(simulation);
+  const Eigen::Vector3f pivot(0, 0, 0.5);
+  for (const auto& [width, height] : {std::pair{480, 270}, {1280, 720}, {3840, 2160}}) {
+    builder.set_frame(width, height, 1.0);
+    const render::DrawList list = builder.build(simulation);
+    float diameter = 0.0f;
+    for (const render::Points& points : list.points) {
+      if (points.positions.size() == 1 && (points.positions[0] - pivot).norm() < 1e-6f) {
+        diameter = points.size_px;
+      }
+    }
+    const float expected = std::max(9.0f, 0.03f * static_cast<float>(height));
+    EXPECT_FLOAT_EQ(diameter, expected) << width << "x" << height;
+    // Its disc covers pi / 4 x 0.03^2 x 9 / 16 = 0.0398% of a 16:9 frame from 720 lines up.
+    const double share = 0.25 * 3.14159265 * diameter * diameter / (double(width) * height);
+    if (height >= 720) {
+      EXPECT_GT(share, 3.9e-4) << width << "x" << height;
+    }
+  }
 }
 
 }  // namespace
