@@ -40,7 +40,7 @@ void BM_ViewerFrame(benchmark::State& state) {
   app::viewer::Viewer viewer(renderer, std::filesystem::temp_directory_path());
   if (!viewer.open(demo())) state.SkipWithError("demo scene did not open");
   app::viewer::Panels panels;
-  render::Image image;
+  tumble::Image image;
   for (auto _ : state) {
     keep_playing(viewer);
     viewer.update(kFrameSeconds);
@@ -59,7 +59,7 @@ void BM_ViewerFrameNoPanels(benchmark::State& state) {
   render::Renderer renderer({kWidth, kHeight, 1});
   app::viewer::Viewer viewer(renderer, std::filesystem::temp_directory_path());
   if (!viewer.open(demo())) state.SkipWithError("demo scene did not open");
-  render::Image image;
+  tumble::Image image;
   for (auto _ : state) {
     keep_playing(viewer);
     viewer.update(kFrameSeconds);

@@ -42,7 +42,7 @@
 #include "engine/dynamics/integrators.hpp"
 #include "engine/simulation/reference_motion.hpp"
 #include "engine/simulation/simulation.hpp"
-#include "render/image_sink.hpp"
+#include "media/image_sink.hpp"
 #include "render/renderer.hpp"
 
 namespace tumble::app {
@@ -218,8 +218,8 @@ void start_jobs(const CompareOptions& options, const CompiledScene& compiled,
 
 /// The grid frame: each run's panel drawn with the first run's camera and copied into its
 /// tile, over the gap grey.
-void draw_grid_frame(const Comparison& comparison, render::Renderer& renderer, render::Image& tile,
-                     render::Image& frame) {
+void draw_grid_frame(const Comparison& comparison, render::Renderer& renderer, Image& tile,
+                     Image& frame) {
   const GridLayout& grid = comparison.grid;
   fill_grey(frame, comparison.frame_settings.width, comparison.frame_settings.height, kGapGrey);
   // Every tile with the first run's camera and the same drift scales.
@@ -244,12 +244,12 @@ void draw_grid_frame(const Comparison& comparison, render::Renderer& renderer, r
 
 /// Every frame time from 0 is visited by every run; frames in the range are drawn into `sink`.
 /// Stops early when interrupted.
-void draw_frames(Comparison& comparison, render::Renderer& renderer, render::ImageSink& sink,
+void draw_frames(Comparison& comparison, render::Renderer& renderer, media::ImageSink& sink,
                  const InterruptGuard& guard, std::ostream& err, bool progress) {
   const FrameRange& range = comparison.range;
   ProgressBar bar(err, range.end - range.first, "frames", progress);
-  render::Image frame;
-  render::Image tile;
+  Image frame;
+  Image tile;
   for (std::size_t index = 0; index < range.end; ++index) {
     if (guard.interrupted()) break;
     for (Run& run : comparison.runs) run.job->advance_to(index);
@@ -323,7 +323,7 @@ int compare_scene(const CompareOptions& options, const InterruptGuard& guard, st
   job_options["dt"] = first.scene.dt;
   const std::string manifest = shard_video_frames(
       options, "compare", first.scene, first.total_frames, job_options, comparison.range);
-  std::unique_ptr<render::ImageSink> sink =
+  std::unique_ptr<media::ImageSink> sink =
       open_render_output(options, comparison.frame_settings, comparison.range.first,
                          scene_inputs(first.scene), manifest);
 

@@ -4,8 +4,8 @@
 #include "app/farm/part_manifest.hpp"
 #include "app/farm/shard.hpp"
 #include "base/errors.hpp"
-#include "base/video_encoding.hpp"
-#include "render/image_sink.hpp"
+#include "media/image_sink.hpp"
+#include "media/video_encoding.hpp"
 
 namespace tumble::app {
 
@@ -27,14 +27,14 @@ json antialiasing_json(const Antialiasing& antialiasing) {
 
 /// The part's format, as its job and payload name it: "png", "mp4" or "webm".
 std::string part_format(const std::filesystem::path& output) {
-  switch (render::sink_kind(output)) {
-    case render::SinkKind::kPngSequence:
+  switch (media::sink_kind(output)) {
+    case media::SinkKind::kPngSequence:
       return "png";
-    case render::SinkKind::kMp4:
+    case media::SinkKind::kMp4:
       return "mp4";
-    case render::SinkKind::kWebm:
+    case media::SinkKind::kWebm:
       return "webm";
-    case render::SinkKind::kGif:
+    case media::SinkKind::kGif:
       break;
   }
   throw InputError(
@@ -74,7 +74,7 @@ std::string shard_video_frames(const VideoOptions& options, std::string_view com
   const std::size_t total = job_frames.end - job_frames.first;
   // A video segment starts on a key frame of the whole video; PNG frames on any frame.
   const std::size_t interval =
-      format == "png" ? 1 : keyframe_interval(job_options.at("fps").get<double>());
+      format == "png" ? 1 : media::keyframe_interval(job_options.at("fps").get<double>());
   const ItemRange range = aligned_range(total, interval, shard);
   if (range.size() == 0) {
     std::string intervals;

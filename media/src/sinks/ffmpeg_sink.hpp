@@ -4,12 +4,12 @@
 
 #include <memory>
 
-#include "render/image_sink.hpp"
+#include "media/image_sink.hpp"
 
-namespace tumble::render::detail {
+namespace tumble::media::detail {
 
 /// `kind` is kMp4, kWebm or kGif.
 std::unique_ptr<ImageSink> open_ffmpeg_sink(const std::filesystem::path& target, SinkKind kind,
                                             const SinkOptions& options);
 
-}  // namespace tumble::render::detail
+}  // namespace tumble::media::detail

@@ -4,12 +4,12 @@
 
 #include <memory>
 
-#include "render/image_sink.hpp"
+#include "media/image_sink.hpp"
 
-namespace tumble::render::detail {
+namespace tumble::media::detail {
 
 /// `directory` has no trailing slash.
 std::unique_ptr<ImageSink> open_png_sequence(const std::filesystem::path& directory,
                                              const SinkOptions& options);
 
-}  // namespace tumble::render::detail
+}  // namespace tumble::media::detail

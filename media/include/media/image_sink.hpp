@@ -1,9 +1,11 @@
 #pragma once
-// Where rendered frames go, chosen by the output name:
-//   "frames/"   (trailing slash or an existing directory) -> frames/frame_000000.png, ...
-//   "out.mp4"   H.264 through an ffmpeg pipe
-//   "out.webm"  VP9 through an ffmpeg pipe
-//   "out.gif"   palette-optimised GIF through an ffmpeg pipe (palettegen + paletteuse)
+/// @file Where rendered frames go, chosen by the output name (media/output_kind.hpp):
+///   "frames/"   (trailing slash or an existing directory) -> frames/frame_000000.png, ...
+///   "out.mp4"   H.264 through an ffmpeg pipe
+///   "out.webm"  VP9 through an ffmpeg pipe
+///   "out.gif"   palette-optimised GIF through an ffmpeg pipe (palettegen + paletteuse)
+/// (target tumble::media_sinks: PNG files need libpng.)
+//
 // Outputs are atomic: frames go to a temporary name in the target's directory, which finish()
 // renames into place. Destroying a sink without finish(), or any failure, removes the temporary
 // and leaves nothing under the final name; no descriptor or ffmpeg process outlives a failure.
@@ -27,12 +29,10 @@
 #include <vector>
 
 #include "base/errors.hpp"
-#include "render/image.hpp"
+#include "base/image.hpp"
+#include "media/output_kind.hpp"
 
-namespace tumble::render {
-
-/// Kind of output, from its name.
-enum class SinkKind { kPngSequence, kMp4, kWebm, kGif };
+namespace tumble::media {
 
 /// Frame size and rate of a sink.
 struct SinkOptions {
@@ -74,9 +74,6 @@ class ImageSink {
   virtual std::size_t frames() const = 0;
 };
 
-/// The kind of output a name asks for. Throws tumble::InputError for anything else.
-SinkKind sink_kind(const std::filesystem::path& target);
-
 /// Opens a sink, checking before any frame is rendered that the kind is known, the directory
 /// is writable and (for videos) ffmpeg can be started. Throws tumble::InputError naming the
 /// path for any of those, std::invalid_argument for invalid options (size, frame rate), and
@@ -84,4 +81,4 @@ SinkKind sink_kind(const std::filesystem::path& target);
 std::unique_ptr<ImageSink> open_image_sink(const std::filesystem::path& target,
                                            const SinkOptions& options);
 
-}  // namespace tumble::render
+}  // namespace tumble::media

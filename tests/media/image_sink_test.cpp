@@ -1,18 +1,17 @@
-#include "render/image_sink.hpp"
+#include "media/image_sink.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <Eigen/Geometry>
 #include <cstdlib>
 
-#include "render/png_io.hpp"
-#include "render/renderer.hpp"
-#include "render_support.hpp"
+#include "media/png_io.hpp"
+#include "support/image_compare.hpp"
 #include "support/run_command.hpp"
+#include "support/synthetic_frames.hpp"
 
-namespace tumble::render {
+namespace tumble::media {
 namespace {
 
 using tumble::testing::directory_entries;
@@ -24,20 +23,9 @@ constexpr int kSinkWidth = 96;
 constexpr int kSinkHeight = 64;
 constexpr int kFrames = 12;
 
-/// kFrames frames of a box turning about z.
+/// kFrames frames of a block turning in the frame.
 std::vector<Image> turning_box_frames(int width = kSinkWidth, int height = kSinkHeight) {
-  Renderer renderer({width, height, 1});
-  DrawList frame;
-  frame.camera.eye = {3.0f, -4.0f, 2.5f};
-  const MeshId box = renderer.upload(testing::box_mesh({0.7f, 0.4f, 0.3f}));
-  std::vector<Image> images;
-  for (int i = 0; i < kFrames; ++i) {
-    const Eigen::Affine3f pose(
-        Eigen::AngleAxisf(0.25f * static_cast<float>(i), Eigen::Vector3f::UnitZ()));
-    frame.meshes = {{box, pose.matrix(), {0.85f, 0.55f, 0.25f, 1.0f}}};
-    images.push_back(renderer.render(frame));
-  }
-  return images;
+  return tumble::testing::turning_block_frames(width, height, kFrames);
 }
 
 SinkOptions options(int width = kSinkWidth, int height = kSinkHeight) {
@@ -100,7 +88,7 @@ TEST(ImageSink, Mp4IsH264WithEveryFrameAndMatchesThePngs) {
   EXPECT_EQ(directory_entries(dir), std::vector<std::string>{"out.mp4"});
   EXPECT_EQ(tumble::testing::probe_video(dir / "out.mp4"), "h264,96,64,12");
 
-  // Decode frame 5 and compare with the rendered image (lossy yuv420p: small mean error).
+  // Decode frame 5 and compare with the frame written (lossy yuv420p: small mean error).
   const auto decoded = dir / "frame5.png";
   const auto result = tumble::testing::run_command(
       "ffmpeg -v error -y -i '" + (dir / "out.mp4").string() +
@@ -275,4 +263,4 @@ TEST(ImageSink, Mp4FramesAreUprightAndInOrder) {
 }
 
 }  // namespace
-}  // namespace tumble::render
+}  // namespace tumble::media

@@ -1,3 +1,4 @@
+// The PNG sequence sink: worker threads encode queued frames into a temporary folder.
 #include "png_sequence_sink.hpp"
 
 #include <cerrno>
@@ -13,22 +14,14 @@
 
 #include "base/errors.hpp"
 #include "base/file_checks.hpp"
-#include "frame_queue.hpp"
-#include "output_paths.hpp"
-#include "render/png_io.hpp"
+#include "base/temporary_path.hpp"
+#include "media/output_kind.hpp"
+#include "media/png_io.hpp"
+#include "queued_sink.hpp"
 
-namespace tumble::render::detail {
+namespace tumble::media::detail {
 
 namespace {
-
-std::string frame_name(std::size_t index) {
-  char name[32];
-  std::snprintf(name, sizeof name, "frame_%06zu.png", index);
-  return name;
-}
-
-/// The manifest file of a PNG folder that is one part of a sharded job.
-constexpr const char* kPartManifestName = "part.json";
 
 /// Writes `text` to `file` whole; throws tumble::InputError naming `target` on any failure.
 void write_manifest(const std::filesystem::path& file, const std::string& text,
@@ -38,36 +31,15 @@ void write_manifest(const std::filesystem::path& file, const std::string& text,
   const int error = errno;
   if (out != nullptr && std::fclose(out) != 0) good = false;
   if (!good) {
-    throw InputError("cannot write '" + (target / kPartManifestName).string() +
+    throw InputError("cannot write '" + (target / kFolderManifestName).string() +
                      "': " + std::strerror(error != 0 ? error : errno));
   }
 }
 
-/// Whether every entry of an existing directory is a frame of an earlier sequence (or the
-/// manifest of an earlier part). Throws
-/// tumble::InputError when the directory cannot be listed.
-bool holds_only_frames(const std::filesystem::path& directory) {
-  std::error_code error;
-  std::filesystem::directory_iterator entry(directory, error);
-  for (; !error && entry != std::filesystem::directory_iterator(); entry.increment(error)) {
-    const std::string name = entry->path().filename().string();
-    std::error_code type_error;
-    if (!entry->is_regular_file(type_error) ||
-        ((!name.starts_with("frame_") || !name.ends_with(".png")) && name != kPartManifestName)) {
-      return false;
-    }
-  }
-  if (error) {
-    throw InputError("cannot write PNG frames to '" + directory.string() +
-                     "': cannot list it: " + error.message());
-  }
-  return true;
-}
-
-class PngSequenceSink final : public ImageSink {
+class PngSequenceSink final : public QueuedSink {
  public:
   PngSequenceSink(const std::filesystem::path& target, const SinkOptions& options)
-      : target_(target), options_(options), queue_(options.queue_frames) {
+      : QueuedSink(target, options, "PNG sink") {
     // Check the destination before any frame is rendered.
     require_output_directory(target_);
     std::error_code error;
@@ -101,12 +73,7 @@ class PngSequenceSink final : public ImageSink {
   }
 
   void write(const Image& frame) override {
-    if (frame.width != options_.width || frame.height != options_.height) {
-      throw std::invalid_argument("PNG sink '" + target_.string() + "': frame is " +
-                                  std::to_string(frame.width) + "x" + std::to_string(frame.height) +
-                                  ", expected " + std::to_string(options_.width) + "x" +
-                                  std::to_string(options_.height));
-    }
+    check_size(frame);
     rethrow_failure();
     if (finished_ || !queue_.push(frame, options_.first_index + frames_)) {
       throw std::logic_error("PNG sink '" + target_.string() + "' is closed");
@@ -121,7 +88,7 @@ class PngSequenceSink final : public ImageSink {
     try {
       rethrow_failure();
       if (!options_.part_manifest.empty()) {
-        write_manifest(temporary_ / kPartManifestName, options_.part_manifest, target_);
+        write_manifest(temporary_ / kFolderManifestName, options_.part_manifest, target_);
       }
       const std::filesystem::path old = temporary_.string() + "-old";
       const bool replacing = std::filesystem::exists(destination_);
@@ -141,8 +108,6 @@ class PngSequenceSink final : public ImageSink {
     finished_ = true;
   }
 
-  std::size_t frames() const override { return frames_; }
-
  private:
   void encode_loop() {
     FrameQueue::Item item;
@@ -152,7 +117,7 @@ class PngSequenceSink final : public ImageSink {
     while (queue_.pop(item)) {
       image.rgba.swap(item.rgba);
       try {
-        if (!failed()) write_png(temporary_ / frame_name(item.index), image, 1);
+        if (!failed()) write_png(temporary_ / frame_file_name(item.index), image, 1);
       } catch (...) {  // kept as thrown: tumble::InputError for a file that cannot be written
         std::lock_guard lock(failure_mutex_);
         if (!failure_) failure_ = std::current_exception();
@@ -189,16 +154,9 @@ class PngSequenceSink final : public ImageSink {
     finished_ = true;
   }
 
-  std::filesystem::path target_;
-  std::filesystem::path destination_;  // what is replaced: target_, or a link's target
-  std::filesystem::path temporary_;
-  SinkOptions options_;
-  FrameQueue queue_;
   std::vector<std::thread> workers_;
   std::mutex failure_mutex_;
   std::exception_ptr failure_;
-  std::size_t frames_ = 0;
-  bool finished_ = false;
 };
 
 }  // namespace
@@ -208,4 +166,4 @@ std::unique_ptr<ImageSink> open_png_sequence(const std::filesystem::path& direct
   return std::make_unique<PngSequenceSink>(directory, options);
 }
 
-}  // namespace tumble::render::detail
+}  // namespace tumble::media::detail

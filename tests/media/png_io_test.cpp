@@ -1,4 +1,4 @@
-#include "render/png_io.hpp"
+#include "media/png_io.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -7,7 +7,7 @@
 
 #include "support/run_command.hpp"
 
-namespace tumble::render {
+namespace tumble::media {
 namespace {
 
 TEST(PngIo, RoundTripsEveryByte) {
@@ -46,4 +46,4 @@ TEST(PngIo, NotAPngIsBadInputAndAMalformedImageIsTheCallers) {
 }
 
 }  // namespace
-}  // namespace tumble::render
+}  // namespace tumble::media

@@ -1,11 +1,12 @@
 #pragma once
-// An RGBA8 image with top-down rows: what the renderer hands back and the sinks consume.
+/// @file An RGBA8 image with top-down rows: what the renderer hands back, the sinks write and the
+/// app composes.
 
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
-namespace tumble::render {
+namespace tumble {
 
 /// Tightly packed RGBA8 pixels, row 0 at the top; `rgba.size() == 4 * width * height`.
 struct Image {
@@ -19,4 +20,4 @@ struct Image {
   }
 };
 
-}  // namespace tumble::render
+}  // namespace tumble

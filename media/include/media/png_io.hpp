@@ -1,12 +1,12 @@
 #pragma once
-// PNG files of render::Image (libpng). Writing favours speed: zlib level 1 and the SUB filter.
+// PNG files of RGBA images (libpng). Writing favours speed: zlib level 1 and the SUB filter.
 
 #include <filesystem>
 
 #include "base/errors.hpp"
-#include "render/image.hpp"
+#include "base/image.hpp"
 
-namespace tumble::render {
+namespace tumble::media {
 
 /// Writes an RGBA8 PNG. Throws tumble::InputError (one line naming the file) when the file
 /// cannot be written, std::invalid_argument for an image whose pixels do not match its size,
@@ -18,4 +18,4 @@ void write_png(const std::filesystem::path& file, const Image& image, int zlib_l
 /// std::runtime_error when libpng runs out of memory.
 Image read_png(const std::filesystem::path& file);
 
-}  // namespace tumble::render
+}  // namespace tumble::media

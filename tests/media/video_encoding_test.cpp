@@ -1,6 +1,6 @@
 // The encoder settings render and merge share (tumble/video_encoding.hpp): the key-frame
 // interval that video shards are cut on, and what makes an MP4 segment code as the whole video.
-#include "base/video_encoding.hpp"
+#include "media/video_encoding.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace tumble {
+namespace tumble::media {
 namespace {
 
 using ::testing::Contains;
@@ -51,4 +51,4 @@ TEST(VideoEncoding, WebmTakesTheSameKeyFramesAndGifNone) {
 }
 
 }  // namespace
-}  // namespace tumble
+}  // namespace tumble::media

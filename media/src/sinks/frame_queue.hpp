@@ -9,9 +9,9 @@
 #include <mutex>
 #include <vector>
 
-#include "render/image.hpp"
+#include "base/image.hpp"
 
-namespace tumble::render::detail {
+namespace tumble::media::detail {
 
 class FrameQueue {
  public:
@@ -106,4 +106,4 @@ class FrameQueue {
   bool closed_ = false;
 };
 
-}  // namespace tumble::render::detail
+}  // namespace tumble::media::detail

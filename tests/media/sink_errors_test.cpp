@@ -16,10 +16,10 @@
 #include <string>
 #include <vector>
 
-#include "render/image_sink.hpp"
+#include "media/image_sink.hpp"
 #include "support/run_command.hpp"
 
-namespace tumble::render {
+namespace tumble::media {
 namespace {
 
 using ::testing::AllOf;
@@ -357,4 +357,4 @@ TEST(SinkErrors, InvalidOptionsAreTheCallers) {
 }
 
 }  // namespace
-}  // namespace tumble::render
+}  // namespace tumble::media

@@ -1,7 +1,7 @@
 #pragma once
-/// @file The one set of ffmpeg encoder settings per video format, shared by render's ffmpeg
-/// sink (frames piped from the renderer) and `tumble merge` (PNG parts encoded once), so a
-/// merged video is encoded exactly as a render to the same extension would be.
+/// @file The one set of ffmpeg encoder settings per video format, shared by the ffmpeg sink
+/// (frames piped from the renderer) and the joiner (PNG parts encoded once, media/video_join.hpp),
+/// so a merged video is encoded exactly as a render to the same extension would be.
 ///
 /// Videos are cut into key-frame intervals of a fixed length (keyframe_interval) counted from
 /// the first frame, and `--shard` cuts a job only where an interval starts. For MP4 every
@@ -33,7 +33,7 @@
 #include <thread>
 #include <vector>
 
-namespace tumble {
+namespace tumble::media {
 
 /// The key-frame interval in frames at `fps`: two seconds of video, at least 1 frame.
 inline std::size_t keyframe_interval(double fps) {
@@ -83,4 +83,4 @@ inline std::string ffmpeg_rate(double fps) {
   return rate;
 }
 
-}  // namespace tumble
+}  // namespace tumble::media

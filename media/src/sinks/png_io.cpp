@@ -1,4 +1,4 @@
-#include "render/png_io.hpp"
+#include "media/png_io.hpp"
 
 #include <png.h>
 
@@ -12,7 +12,7 @@
 
 #include "base/errors.hpp"
 
-namespace tumble::render {
+namespace tumble::media {
 
 namespace {
 
@@ -117,4 +117,4 @@ Image read_png(const std::filesystem::path& file) {
   return image;
 }
 
-}  // namespace tumble::render
+}  // namespace tumble::media
