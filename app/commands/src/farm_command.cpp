@@ -10,11 +10,11 @@
 
 #include <CLI/CLI.hpp>
 
-#include "app/commands/exit_status.hpp"
 #include "app/farm/farm_paths.hpp"
 #include "app/farm/farm_slurm_run.hpp"
 #include "app/farm/shard.hpp"
 #include "app/scene/scene.hpp"
+#include "app/support/exit_status.hpp"
 #include "base/process.hpp"
 
 namespace tumble::app {
@@ -176,7 +176,7 @@ CLI::App& add_farm_command(CLI::App& cli, FarmOptions& options) {
   CLI::App& farm = *cli.add_subcommand(
       "farm",
       "Cut a render, compare, bench, stability or inspect into shards run by Slurm or GNU "
-      "parallel, then merged: prints the script (README, More than one machine)");
+      "parallel, then merged: prints the script (docs/farm.md)");
   farm.require_subcommand(1);
   CLI::App& slurm = *farm.add_subcommand(
       "slurm", "A Slurm array job (one task per shard) and a merge job after it (afterok)");

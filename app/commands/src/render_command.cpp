@@ -14,15 +14,15 @@
 #include <CLI/CLI.hpp>
 
 #include "app/analysis/blow_up.hpp"
-#include "app/commands/exit_status.hpp"
+#include "app/support/exit_status.hpp"
 #include "app/support/interrupt_guard.hpp"
 #include "app/support/printf_number.hpp"
 #include "app/support/progress_bar.hpp"
+#include "app/video/video_part.hpp"
 #include "command_line.hpp"
 #include "engine/simulation/simulation.hpp"
 #include "media/image_sink.hpp"
 #include "video_options_cli.hpp"
-#include "video_part.hpp"
 
 namespace tumble::app {
 namespace {

@@ -51,7 +51,7 @@ namespace {
 
 using viewer::InputEvent;
 
-/// The exit status of an interrupted command (app/commands/exit_status.hpp).
+/// The exit status of an interrupted command (app/support/exit_status.hpp).
 constexpr int kExitInterrupted = 130;
 
 /// SDL's video subsystem, for the software renderer; quit when it goes, if it started.

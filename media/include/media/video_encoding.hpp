@@ -6,7 +6,7 @@
 /// Videos are cut into key-frame intervals of a fixed length (keyframe_interval) counted from
 /// the first frame, and `--shard` cuts a job only where an interval starts. For MP4 every
 /// interval is then coded from its own frames alone, so segments rendered on different machines
-/// and joined are the unsharded video, frame for frame (README, "More than one machine"):
+/// and joined are the unsharded video, frame for frame (docs/merge.md):
 /// - a closed GOP of exactly that length (keyint = min-keyint, scenecut=0): the key frames fall
 ///   at the same frames in a segment and in the whole video;
 /// - a constant quantiser (-qp) instead of CRF: x264's CRF rate control carries a blurred
@@ -21,7 +21,7 @@
 ///   threading on (one thread has no such limit): measured, 2, 3, 4, 6, 12 and 16 threads code
 ///   the same frames alike, and 1 thread differently.
 /// VP9 (WebM) takes the same key frames, but libvpx carries rate-control state across them, so
-/// joined WebM segments are close to, not equal to, the whole video (the README gives the
+/// joined WebM segments are close to, not equal to, the whole video (docs/merge.md gives the
 /// measured PSNR).
 
 #include <algorithm>

@@ -27,7 +27,6 @@
 namespace tumble::app {
 namespace {
 
-using nlohmann::json;
 using ::testing::HasSubstr;
 using tumble::testing::fraction_differing;
 using tumble::testing::fresh_directory;
@@ -36,7 +35,7 @@ using tumble::testing::tumble_executable;
 
 /// A chunky box (moments 2, 3, 4) spun about its intermediate axis with a small wobble: the
 /// tumble amplifies integrator errors, so a first-order method ends far from a fourth-order one.
-json tumbling_scene() {
+nlohmann::json tumbling_scene() {
   return testing::SceneBuilder()
       .name("compare tumble")
       .duration(3.0)

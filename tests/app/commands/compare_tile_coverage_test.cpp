@@ -14,8 +14,8 @@
 
 #include "../frame/frame_scene_setup.hpp"
 #include "app/commands/compare_command.hpp"
-#include "app/commands/compare_panels.hpp"
 #include "app/frame/overlay_fit.hpp"
+#include "app/video/compare_panels.hpp"
 #include "render/overlay_layout.hpp"
 
 namespace tumble::app {

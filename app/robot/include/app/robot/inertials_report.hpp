@@ -1,0 +1,94 @@
+#pragma once
+/// @file `tumble inertials` as library calls: each link's stated inertial compared with the one
+/// its geometry gives (inertials_report, returning data), that comparison as a table and as
+/// JSON, and the whole command (write_inertials).
+
+#include <filesystem>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/robot/inertial_xml.hpp"
+#include "app/robot/link_inertial.hpp"
+#include "app/robot/robot_model.hpp"
+
+namespace tumble::app {
+
+/// What `tumble inertials` was asked to do.
+struct InertialsOptions {
+  std::filesystem::path robot;
+  robot::GeometrySource from = robot::GeometrySource::collision;
+  robot::ComputeOptions compute;
+  /// `--package-path NAME=DIR`, in the order given (ROS_PACKAGE_PATH is looked at after them).
+  std::vector<std::string> package_paths;
+  robot::InertialFrame frame = robot::InertialFrame::mesh;
+  bool json = false;
+  /// `-o`: the rewritten file.
+  std::optional<std::filesystem::path> output;
+  /// `--check`: exit kExitCheckFailed when a link differs by more than `tolerance`.
+  bool check = false;
+  double tolerance = 1e-3;
+};
+
+/// One link: what the file states, what was computed, and how far apart they are.
+struct LinkComparison {
+  std::string name;
+  std::size_t geometries = 0;
+  std::optional<robot::StatedInertial> stated;
+  robot::LinkInertial result;
+  /// Why the stated values cannot be right (missing, zero mass, not positive definite,
+  /// triangle inequality broken), one sentence each.
+  std::vector<std::string> problems;
+  /// The link's and its meshes' notes.
+  std::vector<std::string> notes;
+  /// Relative differences, when both sides have the value: |Δm| / m; |Δc| / r, with r the
+  /// root-mean-square distance of the computed body's matter from its centre of mass
+  /// (sqrt(tr I / 2m), the link's size); ||ΔI|| / ||I|| (Frobenius norms), and the same of
+  /// the principal moments.
+  std::optional<double> mass;
+  std::optional<double> center_of_mass;
+  std::optional<double> inertia;
+  std::optional<double> moments;
+};
+
+/// The comparison for `link`, whose inertial came out as `result`.
+LinkComparison compare_link(const robot::Link& link, robot::LinkInertial result);
+
+/// Whether `--check` passes the link: it has no geometry (nothing to compare), or it states
+/// every value, none impossible, each within `tolerance` of the computed one. A failed link
+/// does not pass.
+bool within_tolerance(const LinkComparison& link, double tolerance);
+
+/// The table for people: a block per link.
+std::string format_comparison(const robot::Robot& robot, const std::vector<LinkComparison>& links,
+                              const std::string& source, double tolerance, bool check);
+
+/// The same as data: {"file", "format", "from", "links": [...]}.
+nlohmann::json comparison_to_json(const robot::Robot& robot,
+                                  const std::vector<LinkComparison>& links,
+                                  const std::string& source, double tolerance, bool check);
+
+/// A robot file's links compared: the robot as read and one comparison per link, in order.
+struct InertialsReport {
+  robot::Robot robot;
+  std::vector<LinkComparison> links;
+  /// "collision" or "visual": the geometry the inertials came from.
+  std::string source;
+  /// Whether some link's geometry failed (LinkComparison::result.error says why).
+  bool failed() const;
+};
+
+/// Reads `options.robot` (its --from geometry, --package-path) and computes and compares every
+/// link's inertial; nothing is printed or written. Throws InputError for a file that cannot be
+/// read.
+InertialsReport inertials_report(const InertialsOptions& options);
+
+/// The whole `tumble inertials`: the report on `out` (table or JSON), an error line per failed
+/// link on `err`, -o written atomically when no link failed. Returns kExitInputError when a link
+/// failed, kExitCheckFailed when --check found a difference, else kExitDone.
+int write_inertials(const InertialsOptions& options, std::ostream& out, std::ostream& err);
+
+}  // namespace tumble::app
