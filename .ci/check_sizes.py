@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Reports functions longer than --max-function lines and source files longer than --max-file
-lines in the project's own C++ (app, base, engine, render, assets/tools). Exit 1 when any is found.
+lines in the project's own C++ (app, base, engine, media, render, assets/tools). Exit 1 when any
+is found.
 
 Functions are found by brace matching on the source with comments, strings and character
 literals blanked out: a '{' opens a function body when it is not inside another function and
@@ -14,7 +15,7 @@ import pathlib
 import re
 import sys
 
-ROOTS = ["app", "base", "engine", "render", "assets/tools"]
+ROOTS = ["app", "base", "engine", "media", "render", "assets/tools"]
 SUFFIXES = {".cpp", ".hpp", ".h", ".cc"}
 SCOPE_WORDS = re.compile(r"\b(namespace|class|struct|union|enum)\b[^()]*$|\bextern\s+\"C\"\s*$")
 CONTROL = re.compile(r"^\s*(if|for|while|switch|catch|do|else|try)\b")

@@ -17,6 +17,7 @@
 namespace {
 
 using namespace tumble::render;
+using tumble::Image;
 
 constexpr int kWidth = 1280;
 constexpr int kHeight = 720;

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "app/commands/render_command.hpp"
-#include "base/video_encoding.hpp"
-#include "render/image_sink.hpp"
+#include "media/image_sink.hpp"
+#include "media/video_encoding.hpp"
 
 namespace {
 
@@ -43,7 +43,7 @@ app::RenderPlan demo_plan(const std::filesystem::path& output) {
 void BM_FfmpegAlone(benchmark::State& state) {
   const auto output = output_directory() / "alone.mp4";
   const app::RenderPlan plan = demo_plan(output);
-  std::vector<render::Image> frames(kFrames);
+  std::vector<tumble::Image> frames(kFrames);
   {
     app::RenderJob job(plan);
     for (std::size_t frame = 0; frame < kFrames; ++frame) {
@@ -51,12 +51,12 @@ void BM_FfmpegAlone(benchmark::State& state) {
       job.draw(frames[frame]);
     }
   }
-  // The MP4 sink's command line (render/src/ffmpeg_sink.cpp), its encoder settings included.
+  // The MP4 sink's command line (media/src/sinks/ffmpeg_sink.cpp), its encoder settings included.
   std::string command =
       "ffmpeg -hide_banner -nostdin -nostats -loglevel error -y -f rawvideo -pix_fmt rgba -s " +
       std::to_string(plan.settings.width) + "x" + std::to_string(plan.settings.height) + " -r " +
-      ffmpeg_rate(plan.settings.fps) + " -i -";
-  for (const std::string& argument : ffmpeg_encoder_arguments("mp4", plan.settings.fps)) {
+      media::ffmpeg_rate(plan.settings.fps) + " -i -";
+  for (const std::string& argument : media::ffmpeg_encoder_arguments("mp4", plan.settings.fps)) {
     command += " '" + argument + "'";
   }
   command += " '" + output.string() + "'";
@@ -66,7 +66,7 @@ void BM_FfmpegAlone(benchmark::State& state) {
       state.SkipWithError("cannot start ffmpeg");
       break;
     }
-    for (const render::Image& image : frames) {
+    for (const tumble::Image& image : frames) {
       std::fwrite(image.rgba.data(), 1, image.rgba.size(), pipe);
     }
     if (::pclose(pipe) != 0) state.SkipWithError("ffmpeg failed");
@@ -78,11 +78,11 @@ void BM_FfmpegAlone(benchmark::State& state) {
 void BM_EndToEndMp4(benchmark::State& state) {
   const auto output = output_directory() / "end_to_end.mp4";
   const app::RenderPlan plan = demo_plan(output);
-  render::SinkOptions sink_options;
+  media::SinkOptions sink_options;
   sink_options.width = plan.settings.width;
   sink_options.height = plan.settings.height;
   sink_options.fps = plan.settings.fps;
-  render::Image image;
+  tumble::Image image;
   for (auto _ : state) {
     // Untimed: meshes, GL context, the first overlay (ImGui's font atlas).
     state.PauseTiming();
@@ -90,7 +90,7 @@ void BM_EndToEndMp4(benchmark::State& state) {
     job->advance_to(0);
     job->draw(image);
     state.ResumeTiming();
-    auto sink = render::open_image_sink(output, sink_options);
+    auto sink = media::open_image_sink(output, sink_options);
     for (std::size_t frame = 0; frame < kFrames; ++frame) {
       job->advance_to(frame);
       job->draw(image);

@@ -8,13 +8,15 @@
 #include <filesystem>
 #include <numbers>
 
-#include "render/image_sink.hpp"
+#include "media/image_sink.hpp"
 #include "render/renderer.hpp"
 #include "support/torus_mesh.hpp"
 
 namespace {
 
 using namespace tumble::render;
+using namespace tumble::media;
+using tumble::Image;
 
 constexpr int kWidth = 1280;
 constexpr int kHeight = 720;

@@ -14,7 +14,7 @@
 #include <string>
 
 #include "app/commands/render_command.hpp"
-#include "render/image_sink.hpp"
+#include "media/image_sink.hpp"
 
 namespace {
 
@@ -48,19 +48,19 @@ app::RenderOptions demo_options(const std::filesystem::path& output) {
 void render_frames(benchmark::State& state, const std::string& output_name) {
   const std::filesystem::path output = output_directory() / output_name;
   const app::RenderPlan plan = app::plan_render(demo_options(output));
-  render::SinkOptions sink_options;
+  media::SinkOptions sink_options;
   sink_options.width = plan.settings.width;
   sink_options.height = plan.settings.height;
   sink_options.fps = plan.settings.fps;
-  render::Image image;
+  tumble::Image image;
   for (auto _ : state) {
     // Set-up, untimed: meshes, GL context, the first overlay, the sink.
     state.PauseTiming();
     auto job = std::make_unique<app::RenderJob>(plan);
     job->advance_to(0);
     job->draw(image);
-    std::unique_ptr<render::ImageSink> sink;
-    if (!output_name.empty()) sink = render::open_image_sink(output, sink_options);
+    std::unique_ptr<media::ImageSink> sink;
+    if (!output_name.empty()) sink = media::open_image_sink(output, sink_options);
     state.ResumeTiming();
 
     for (std::size_t frame = 0; frame < kFrames; ++frame) {

@@ -1,7 +1,7 @@
 // The viewer's frame at 1280x720 on the T-handle demo, without the window: the simulation
 // stepped by one 60 Hz frame of wall time, the draw list, the 3D passes, the scene's overlay and
 // the viewer's ImGui panels, read back. What SDL adds (texture upload and present) is measured
-// by `tumble view --stats` under Xvfb (README). The `fps` counter is frames per wall second.
+// by `tumble view --stats` under Xvfb (docs/performance.md, Viewer). The `fps` counter is frames per wall second.
 //   BM_ViewerFrame          everything above (the figure the 60 frames/s is about)
 //   BM_ViewerFrameNoPanels  the same without the ImGui panels
 //   BM_ViewerStepOnly       only the simulation's share (1/60 s of the demo's rk4 steps)
@@ -40,7 +40,7 @@ void BM_ViewerFrame(benchmark::State& state) {
   app::viewer::Viewer viewer(renderer, std::filesystem::temp_directory_path());
   if (!viewer.open(demo())) state.SkipWithError("demo scene did not open");
   app::viewer::Panels panels;
-  render::Image image;
+  tumble::Image image;
   for (auto _ : state) {
     keep_playing(viewer);
     viewer.update(kFrameSeconds);
@@ -59,7 +59,7 @@ void BM_ViewerFrameNoPanels(benchmark::State& state) {
   render::Renderer renderer({kWidth, kHeight, 1});
   app::viewer::Viewer viewer(renderer, std::filesystem::temp_directory_path());
   if (!viewer.open(demo())) state.SkipWithError("demo scene did not open");
-  render::Image image;
+  tumble::Image image;
   for (auto _ : state) {
     keep_playing(viewer);
     viewer.update(kFrameSeconds);

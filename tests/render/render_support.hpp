@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
+#include "base/image.hpp"
+#include "media/png_io.hpp"
 #include "render/draw_list.hpp"
-#include "render/image.hpp"
-#include "render/png_io.hpp"
 #include "support/image_compare.hpp"
 
 namespace tumble::render::testing {
@@ -107,12 +107,12 @@ inline void expect_matches_golden(const Image& image, const std::string& name) {
       std::filesystem::path(TUMBLE_SOURCE_DIR) / "tests/render/golden" / (name + ".png");
   const char* update = std::getenv("TUMBLE_UPDATE_GOLDEN");
   if (update != nullptr && std::string(update) == "1") {
-    write_png(golden, image, 9);
+    media::write_png(golden, image, 9);
     GTEST_SKIP() << "rewrote " << golden;
   }
   ASSERT_TRUE(std::filesystem::exists(golden))
       << golden << " missing: run with TUMBLE_UPDATE_GOLDEN=1";
-  const Image expected = read_png(golden);
+  const Image expected = media::read_png(golden);
   ASSERT_EQ(expected.width, image.width);
   ASSERT_EQ(expected.height, image.height);
   EXPECT_LE(tumble::testing::pixels_differing(expected, image, 32),

@@ -16,7 +16,7 @@ namespace {
 
 /// A turned box over a gradient, with a label: the aspect, the ground and the overlay all
 /// depend on the frame's size.
-DrawList box_frame(MeshId box) {
+DrawList resized_box_frame(MeshId box) {
   DrawList frame;
   frame.camera.eye = {3.0f, -4.0f, 2.5f};
   frame.style.ground = true;
@@ -29,7 +29,7 @@ DrawList box_frame(MeshId box) {
 }
 
 Image render_box(Renderer& renderer, MeshId box) {
-  return renderer.render(box_frame(box));
+  return renderer.render(resized_box_frame(box));
 }
 
 class RendererResize : public ::testing::TestWithParam<std::pair<int, AntialiasingFilter>> {};

@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <optional>
 
-#include "render/image.hpp"
+#include "base/image.hpp"
 
 namespace tumble::testing {
 
@@ -21,7 +21,7 @@ struct PixelRegion {
 
 /// Pixels (of `region`, or the whole image) whose RGB differ by more than `levels` in some
 /// channel. Images of different sizes fail the test and differ everywhere.
-inline std::size_t pixels_differing(const render::Image& a, const render::Image& b, int levels = 0,
+inline std::size_t pixels_differing(const tumble::Image& a, const tumble::Image& b, int levels = 0,
                                     std::optional<PixelRegion> region = std::nullopt) {
   EXPECT_EQ(a.width, b.width);
   EXPECT_EQ(a.height, b.height);
@@ -44,7 +44,7 @@ inline std::size_t pixels_differing(const render::Image& a, const render::Image&
 }
 
 /// The fraction of all pixels that pixels_differing counts (1 for images of different sizes).
-inline double fraction_differing(const render::Image& a, const render::Image& b, int levels) {
+inline double fraction_differing(const tumble::Image& a, const tumble::Image& b, int levels) {
   if (a.rgba.empty()) return 1.0;
   return static_cast<double>(pixels_differing(a, b, levels)) /
          static_cast<double>(a.rgba.size() / 4);
@@ -52,7 +52,7 @@ inline double fraction_differing(const render::Image& a, const render::Image& b,
 
 /// Mean absolute difference per RGB channel, in 8-bit levels (different sizes fail the test
 /// and give 255).
-inline double mean_difference(const render::Image& a, const render::Image& b) {
+inline double mean_difference(const tumble::Image& a, const tumble::Image& b) {
   EXPECT_EQ(a.width, b.width);
   EXPECT_EQ(a.height, b.height);
   if (a.width != b.width || a.height != b.height || a.rgba.size() != b.rgba.size()) return 255.0;

@@ -1,6 +1,6 @@
 #pragma once
-// Scene files for tests: a small builder producing the JSON of a scene (see README.md, "Scene
-// files"), so every test states only what its scene is about.
+// Scene files for tests: a small builder producing the JSON of a scene (see docs/scenes.md), so
+// every test states only what its scene is about.
 //
 //   SceneBuilder().duration(5).dt(0.003)
 //       .body(BodyBuilder("brick").angular_velocity({0.1, 2.0, 0.1}))

@@ -1,12 +1,17 @@
-// A run of a scene without rendering (simulation_run.hpp): the command's options over the
-// scene, the stepping loop with its recorded steps and each body's invariants.
+// A scene run without rendering: options over the scene, the run with its invariants watched,
+// its rows recorded into the trajectory CSV or into memory, and the summary.
 #include "app/analysis/simulation_run.hpp"
 
-#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <ostream>
+#include <sstream>
 
 #include "app/analysis/blow_up.hpp"
+#include "app/scene/scene.hpp"
+#include "app/support/csv_writer.hpp"
+#include "app/support/exit_status.hpp"
 #include "app/support/printf_number.hpp"
 #include "base/errors.hpp"
 #include "engine/dynamics/integrators.hpp"
@@ -18,8 +23,8 @@ namespace {
 
 using tumble::InputError;
 
-/// Applies the options on top of the scene and checks them all.
-void apply_run_options(const SimulateOptions& options, SceneDescription& scene) {
+/// Applies the command-line options on top of the scene and checks them all.
+void apply_options(const SimulateOptions& options, SceneDescription& scene) {
   if (options.integrator) override_integrator(scene, *options.integrator);
   if (options.dt) scene.dt = positive_option(*options.dt, "--dt");
   if (options.duration) scene.duration = positive_option(*options.duration, "--duration");
@@ -121,18 +126,23 @@ engine::Simulation build_simulation(const SimulateOptions& options, const SceneD
   }
 }
 
+/// Where a run's recorded rows go: the CSV, or the trajectory in memory.
+using RowRecorder = std::function<void(double time, const std::vector<engine::BodyModel>& bodies,
+                                       const std::vector<engine::BodyState>& states)>;
+
 /// Steps to the end or the blow-up, watching each body's invariants every step and recording
-/// every `every`th step (and the first and the last), until `stop` says so. Returns the time
-/// spent in the steps alone, or nothing when stopped.
-std::optional<std::chrono::steady_clock::duration> step_and_record(
-    engine::Simulation& simulation, std::vector<InvariantMonitor>& monitors, std::size_t every,
-    const RecordStep& record, const StopRequested& stop) {
+/// every `every`th step (and the first and the last) with `record`, until `interrupted` says
+/// so. Returns the time spent in the steps alone.
+std::chrono::steady_clock::duration run_and_record(engine::Simulation& simulation,
+                                                   std::vector<InvariantMonitor>& monitors,
+                                                   const RowRecorder& record, std::size_t every,
+                                                   const std::function<bool()>& interrupted) {
   const auto& bodies = simulation.bodies();
-  record(simulation);
-  std::size_t last_recorded = 0;
+  record(simulation.time(), bodies, simulation.states());
+  std::size_t last_written = 0;
   std::chrono::steady_clock::duration stepping{};
   while (!simulation.finished()) {
-    if (simulation.steps() % 64 == 0 && stop()) return std::nullopt;
+    if (simulation.steps() % 64 == 0 && interrupted && interrupted()) return stepping;
     const auto start = std::chrono::steady_clock::now();
     const bool good = simulation.step();
     stepping += std::chrono::steady_clock::now() - start;
@@ -141,12 +151,14 @@ std::optional<std::chrono::steady_clock::duration> step_and_record(
       monitors[i].observe(engine::invariants(bodies[i], simulation.states()[i]));
     }
     if (simulation.steps() % every == 0 || simulation.finished()) {
-      record(simulation);
-      last_recorded = simulation.steps();
+      record(simulation.time(), bodies, simulation.states());
+      last_written = simulation.steps();
     }
   }
   // After a blow-up the states are the last good ones: make sure that row is recorded.
-  if (simulation.steps() != last_recorded && simulation.steps() > 0) record(simulation);
+  if (simulation.steps() != last_written && simulation.steps() > 0) {
+    record(simulation.time(), bodies, simulation.states());
+  }
   return stepping;
 }
 
@@ -172,38 +184,48 @@ std::vector<BodySummary> body_summaries(const engine::Simulation& simulation,
   return summaries;
 }
 
-}  // namespace
-
-SimulationRun::SimulationRun(const SimulateOptions& options, SceneDescription scene)
-    : options_(options), scene_(std::move(scene)) {
-  apply_run_options(options_, scene_);
-  check_run_length(options_, scene_);
+/// `scene` with the options applied, checked (InputError naming the file or option).
+SceneDescription checked_scene(const SimulateOptions& options, SceneDescription scene) {
+  apply_options(options, scene);
+  check_run_length(options, scene);
+  return scene;
 }
 
-bool SimulationRun::run(const RecordStep& record, const StopRequested& stop) {
-  engine::Simulation simulation = build_simulation(options_, scene_);
-  summary_ = RunSummary{};
-  summary_.scene = scene_.name;
-  summary_.file = scene_.file;
-  summary_.integrator = scene_.integrator;
-  summary_.dt = simulation.settings().dt;
-  summary_.duration = simulation.settings().duration;
-  summary_.total_steps = simulation.total_steps();
+/// The checked scene of `options` (InputError naming the file or option).
+SceneDescription checked_scene(const SimulateOptions& options) {
+  return checked_scene(options, load_scene(options.scene));
+}
+
+/// Runs `scene` (compiled here: meshes imported) recording rows with `record`, and fills
+/// `summary` but for the CSV; returns false when
+/// `interrupted` stopped it.
+bool run_scene(const SimulateOptions& options, const SceneDescription& scene,
+               const RowRecorder& record, const std::function<bool()>& interrupted,
+               RunSummary& summary) {
+  engine::Simulation simulation = build_simulation(options, scene);
+  summary.scene = scene.name;
+  summary.file = scene.file;
+  summary.integrator = scene.integrator;
+  summary.dt = simulation.settings().dt;
+  summary.duration = simulation.settings().duration;
+  summary.total_steps = simulation.total_steps();
   std::vector<InvariantMonitor> monitors;
   for (std::size_t i = 0; i < simulation.bodies().size(); ++i) {
     monitors.emplace_back(
         engine::invariants(simulation.bodies()[i], simulation.initial_states()[i]));
   }
-  const auto stepping =
-      step_and_record(simulation, monitors, static_cast<std::size_t>(options_.every), record, stop);
-  if (!stepping) return false;
-  summary_.steps = simulation.steps();
-  summary_.time = simulation.time();
-  summary_.wall_seconds = std::chrono::duration<double>(*stepping).count();
-  summary_.bodies = body_summaries(simulation, monitors);
-  if (simulation.blow_up()) summary_.blow_up = "blow-up: " + describe_blow_up(simulation);
+  const auto stepping = run_and_record(simulation, monitors, record,
+                                       static_cast<std::size_t>(options.every), interrupted);
+  if (interrupted && interrupted()) return false;
+  summary.steps = simulation.steps();
+  summary.time = simulation.time();
+  summary.wall_seconds = std::chrono::duration<double>(stepping).count();
+  summary.bodies = body_summaries(simulation, monitors);
+  if (simulation.blow_up()) summary.blow_up = "blow-up: " + describe_blow_up(simulation);
   return true;
 }
+
+}  // namespace
 
 nlohmann::json integrators_to_json() {
   nlohmann::json list = nlohmann::json::array();
@@ -215,6 +237,90 @@ nlohmann::json integrators_to_json() {
                     {"properties", info.properties}});
   }
   return list;
+}
+
+void list_integrators(bool as_json, std::ostream& out) {
+  const auto& catalog = engine::integrator_catalog();
+  if (as_json) {
+    out << integrators_to_json().dump(2) << "\n";
+    return;
+  }
+  std::size_t width = 4;
+  for (const auto& info : catalog) width = std::max(width, info.name.size());
+  const auto pad = [](std::string text, std::size_t size) {
+    text.resize(std::max(size, text.size()), ' ');
+    return text;
+  };
+  out << pad("name", width + 2) << pad("order", 7) << "properties\n";
+  for (const auto& info : catalog) {
+    const std::string order = info.order < 0 ? "exact" : std::to_string(info.order);
+    out << pad(info.name, width + 2) << pad(order, 7) << info.properties << "\n";
+  }
+}
+
+BodySample Trajectory::sample(std::size_t k, std::size_t body) const {
+  const engine::BodyModel& model = bodies.at(body);
+  const engine::BodyState& state = states.at(k).at(body);
+  return {state.position,         engine::body_orientation(model, state),
+          state.velocity,         engine::angular_velocity(model, state),
+          state.angular_momentum, engine::energy(model, state)};
+}
+
+Trajectory run_simulation(const SimulateOptions& options,
+                          const std::function<bool()>& interrupted) {
+  return run_simulation(options, load_scene(options.scene), interrupted);
+}
+
+Trajectory run_simulation(const SimulateOptions& options, SceneDescription loaded,
+                          const std::function<bool()>& interrupted) {
+  const SceneDescription scene = checked_scene(options, std::move(loaded));
+  Trajectory trajectory;
+  trajectory.inputs = scene_inputs(scene);
+  const RowRecorder record = [&](double time, const std::vector<engine::BodyModel>& bodies,
+                                 const std::vector<engine::BodyState>& states) {
+    if (trajectory.bodies.empty()) trajectory.bodies = bodies;
+    trajectory.times.push_back(time);
+    trajectory.states.push_back(states);
+  };
+  run_scene(options, scene, record, interrupted, trajectory.summary);
+  return trajectory;
+}
+
+void write_trajectory_csv(const Trajectory& trajectory, const std::filesystem::path& path) {
+  TrajectoryCsv csv(path, trajectory.inputs);
+  for (std::size_t k = 0; k < trajectory.times.size(); ++k) {
+    csv.write_rows(trajectory.times[k], trajectory.bodies, trajectory.states[k]);
+  }
+  csv.commit();
+}
+
+int simulate_scene(const SimulateOptions& options, const std::function<bool()>& interrupted,
+                   RunSummary& summary, std::ostream& err) {
+  // Scene and options: everything is checked before any output is created.
+  const SceneDescription scene = checked_scene(options);
+  // The CSV's temporary file is created now, so an unwritable path fails before the run.
+  std::optional<TrajectoryCsv> csv;
+  if (options.csv) csv.emplace(*options.csv, scene_inputs(scene));
+  const RowRecorder record = [&](double time, const std::vector<engine::BodyModel>& bodies,
+                                 const std::vector<engine::BodyState>& states) {
+    if (csv) csv->write_rows(time, bodies, states);
+  };
+  // the CSV's temporary goes with `csv`
+  if (!run_scene(options, scene, record, interrupted, summary)) return kExitInterrupted;
+  if (csv) {
+    csv->commit();
+    summary.csv = csv->path();
+    summary.csv_rows = csv->rows();
+  }
+  if (summary.blow_up) {
+    if (csv) {
+      *summary.blow_up += "; " + csv->path().string() +
+                          " holds the rows up to t = " + printf_number(summary.time, "%.9g") + " s";
+    }
+    err << "tumble simulate: " << *summary.blow_up << "\n";
+    return kExitBlowUp;
+  }
+  return 0;
 }
 
 nlohmann::json summary_to_json(const RunSummary& summary) {
@@ -250,6 +356,36 @@ nlohmann::json summary_to_json(const RunSummary& summary) {
       {"blow_up", summary.blow_up ? nlohmann::json(*summary.blow_up) : nlohmann::json()},
       {"bodies", bodies},
   };
+}
+
+std::string format_summary(const RunSummary& summary) {
+  std::ostringstream out;
+  out << summary.scene << ": " << summary.integrator << ", dt " << printf_number(summary.dt)
+      << " s, " << summary.steps << " of " << summary.total_steps
+      << " steps to t = " << printf_number(summary.time) << " s"
+      << (summary.blow_up ? " (blew up)" : "") << "\n";
+  const double rate =
+      summary.wall_seconds > 0.0 ? static_cast<double>(summary.steps) / summary.wall_seconds : 0.0;
+  out << "  stepping " << printf_number(summary.wall_seconds, "%.3g") << " s wall, "
+      << printf_number(rate, "%.3g") << " steps/s\n";
+  for (const BodySummary& body : summary.bodies) {
+    out << "  body '" << body.name << "'\n";
+    out << "    energy drift   max " << printf_number(body.energy_drift_max, "%.3e") << "  final "
+        << printf_number(body.energy_drift_final, "%.3e")
+        << (body.energy_conserved ? "" : "  (not an invariant here)") << "\n";
+    out << "    |L| drift      max " << printf_number(body.momentum_drift_max, "%.3e") << "  final "
+        << printf_number(body.momentum_drift_final, "%.3e")
+        << (body.momentum_conserved ? "" : "  (not an invariant here: torques)") << "\n";
+    if (body.orientation_error) {
+      out << "    orientation error " << printf_number(*body.orientation_error, "%.3e")
+          << " rad against the exact " << (body.momentum_conserved ? "torque-free" : "heavy-top")
+          << " solution\n";
+    }
+  }
+  if (summary.csv) {
+    out << "  csv " << summary.csv->string() << " (" << summary.csv_rows << " rows)\n";
+  }
+  return out.str();
 }
 
 }  // namespace tumble::app

@@ -4,8 +4,8 @@
 ///
 /// `tumble` itself holds the commands that draw nothing (inspect, simulate, bench, stability):
 /// it never loads the GL, SDL or audio libraries. For render, compare and view it replaces
-/// itself with `tumble-draw`, the executable beside it that holds those three (README,
-/// "Start-up"), so to the user there is one command with one help text.
+/// itself with `tumble-draw`, the executable beside it that holds those three
+/// (docs/architecture.md), so to the user there is one command with one help text.
 
 #include <string>
 #include <string_view>
@@ -63,6 +63,16 @@ inline void configure_top_level(CLI::App& cli) {
       "compare, bench, stability, view");
   cli.require_subcommand(1);
   cli.set_version_flag("--version", "tumble " TUMBLE_VERSION);
+}
+
+/// Ends every command's help with the page of the manual that holds it: "Manual:
+/// docs/inspect.md" (after the footer the command has).
+inline void name_manual_pages(CLI::App& cli) {
+  for (CLI::App* command : cli.get_subcommands({})) {
+    const std::string footer = command->get_footer();
+    command->footer((footer.empty() ? "" : footer + "\n\n") + "Manual: docs/" +
+                    command->get_name() + ".md");
+  }
 }
 
 }  // namespace tumble::app

@@ -6,9 +6,9 @@
 #include <CLI/CLI.hpp>
 
 #include "app/commands/compare_command.hpp"
-#include "app/commands/exit_status.hpp"
 #include "app/commands/render_command.hpp"
 #include "app/commands/view_command.hpp"
+#include "app/support/exit_status.hpp"
 #include "command_line.hpp"
 
 int main(int argc, char** argv) {
@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   CLI::App& compare = tumble::app::add_compare_command(cli, compare_options);
   tumble::app::ViewOptions view_options;
   CLI::App& view = tumble::app::add_view_command(cli, view_options);
+  tumble::app::name_manual_pages(cli);
 
   try {
     cli.parse(argc, argv);

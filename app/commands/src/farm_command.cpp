@@ -10,12 +10,12 @@
 
 #include <CLI/CLI.hpp>
 
-#include "app/commands/exit_status.hpp"
 #include "app/farm/farm_paths.hpp"
-#include "app/farm/farm_process.hpp"
 #include "app/farm/farm_slurm_run.hpp"
 #include "app/farm/shard.hpp"
 #include "app/scene/scene.hpp"
+#include "app/support/exit_status.hpp"
+#include "base/process.hpp"
 
 namespace tumble::app {
 
@@ -161,7 +161,7 @@ int run_parallel(const FarmOptions& options, const FarmJob& job,
     return kExitDone;
   }
   out << std::flush;
-  const int status = run_attached({"bash", "-c", line});
+  const int status = run_attached({"bash", "-c", line}).shell_status();
   if (status == 127) throw InputError("cannot run bash (or GNU parallel: install parallel)");
   if (status != 0) {
     throw InputError("the shards or the merge failed (exit status " + std::to_string(status) +
@@ -176,7 +176,7 @@ CLI::App& add_farm_command(CLI::App& cli, FarmOptions& options) {
   CLI::App& farm = *cli.add_subcommand(
       "farm",
       "Cut a render, compare, bench, stability or inspect into shards run by Slurm or GNU "
-      "parallel, then merged: prints the script (README, More than one machine)");
+      "parallel, then merged: prints the script (docs/farm.md)");
   farm.require_subcommand(1);
   CLI::App& slurm = *farm.add_subcommand(
       "slurm", "A Slurm array job (one task per shard) and a merge job after it (afterok)");

@@ -1,15 +1,11 @@
 // `tumble inertials`.
 #include "app/commands/inertials_command.hpp"
 
-#include <filesystem>
 #include <ostream>
 
 #include <CLI/CLI.hpp>
 
-#include "app/commands/exit_status.hpp"
-#include "app/robot/inertials_report.hpp"
-#include "base/errors.hpp"
-#include "base/file_checks.hpp"
+#include "app/support/exit_status.hpp"
 
 namespace tumble::app {
 
@@ -73,60 +69,8 @@ CLI::App& add_inertials_command(CLI::App& cli, InertialsOptions& options) {
   return command;
 }
 
-namespace {
-
-robot::PackagePaths package_paths(const std::vector<std::string>& given) {
-  robot::PackagePaths out;
-  for (const std::string& entry : given) {
-    const std::size_t equals = entry.find('=');
-    if (equals == std::string::npos || equals == 0 || equals + 1 == entry.size()) {
-      throw InputError("--package-path '" + entry + "': expected NAME=DIR");
-    }
-    out.emplace_back(entry.substr(0, equals), entry.substr(equals + 1));
-  }
-  return out;
-}
-
-int inertials(const InertialsOptions& options, std::ostream& out, std::ostream& err) {
-  robot::ReadOptions read;
-  read.from = options.from;
-  read.packages = package_paths(options.package_paths);
-  // A refused output fails before any work (and checked again when written).
-  if (options.output) checked_output(*options.output, {options.robot});
-  const InertialsReport report = compute_inertials(options.robot, read, options.compute);
-  for (const std::string& error : report.errors()) {
-    err << "tumble inertials: error: " << error << "\n";
-  }
-  const bool failed = !report.errors().empty();
-  if (options.json) {
-    out << comparison_to_json(report.robot, report.links, report.source, options.tolerance,
-                              options.check)
-               .dump(2)
-        << "\n";
-  } else {
-    out << format_comparison(report.robot, report.links, report.source, options.tolerance,
-                             options.check);
-  }
-  if (failed) {
-    if (options.output) {
-      err << "tumble inertials: nothing written to '" << options.output->string()
-          << "': a link failed\n";
-    }
-    return kExitInputError;
-  }
-  if (options.output) write_inertials(report, *options.output, options.frame);
-  if (options.check) {
-    for (const LinkComparison& link : report.links) {
-      if (!within_tolerance(link, options.tolerance)) return kExitCheckFailed;
-    }
-  }
-  return kExitDone;
-}
-
-}  // namespace
-
 int run_inertials(const InertialsOptions& options, std::ostream& out, std::ostream& err) {
-  return run_guarded("inertials", err, [&] { return inertials(options, out, err); });
+  return run_guarded("inertials", err, [&] { return write_inertials(options, out, err); });
 }
 
 }  // namespace tumble::app

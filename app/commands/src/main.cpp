@@ -11,13 +11,13 @@
 #include <CLI/CLI.hpp>
 
 #include "app/commands/bench_command.hpp"
-#include "app/commands/exit_status.hpp"
 #include "app/commands/farm_command.hpp"
 #include "app/commands/inertials_command.hpp"
 #include "app/commands/inspect_command.hpp"
 #include "app/commands/merge_command.hpp"
 #include "app/commands/simulate_command.hpp"
 #include "app/commands/stability_command.hpp"
+#include "app/support/exit_status.hpp"
 #include "command_line.hpp"
 
 namespace {
@@ -72,6 +72,7 @@ int main(int argc, char** argv) {
   CLI::App& merge = tumble::app::add_merge_command(cli, merge_options);
   tumble::app::FarmOptions farm_options;
   CLI::App& farm = tumble::app::add_farm_command(cli, farm_options);
+  tumble::app::name_manual_pages(cli);
 
   try {
     cli.parse(argc, argv);

@@ -1,53 +1,38 @@
-// `tumble merge`: reads every part's manifest and hands the parts to the merge of their kind.
+// `tumble merge`: reads every part's manifest and hands the parts to the merge of their kind
+// (app/farm/part_kind.hpp), looked up by name.
 #include "app/commands/merge_command.hpp"
 
 #include <ostream>
 
 #include <CLI/CLI.hpp>
 
-#include "app/commands/exit_status.hpp"
-#include "app/farm/part_manifest.hpp"
+#include "app/analysis/row_part_kinds.hpp"
+#include "app/farm/part_kind.hpp"
+#include "app/inspect/inspect_parts.hpp"
+#include "app/support/exit_status.hpp"
 #include "app/support/interrupt_guard.hpp"
-#include "merge_rows.hpp"
-#include "merge_video.hpp"
+#include "app/video_parts/video_merge.hpp"
 
 namespace tumble::app {
 
 namespace {
 
-int merge_parts(const MergeOptions& options, const InterruptGuard& guard, std::ostream& out,
-                std::ostream& err) {
-  std::vector<NamedManifest> parts;
-  for (const std::filesystem::path& part : options.parts) {
-    parts.push_back({part, read_part_manifest(part)});
-  }
-  const std::string& kind = parts.front().manifest.kind;
-  if (kind == "bench" || kind == "stability" || kind == "inspect") {
-    std::vector<NamedManifest> ordered;
-    for (const std::size_t i : check_parts_cover_job(parts)) ordered.push_back(parts[i]);
-    if (kind == "inspect") {
-      merge_inspect_parts(ordered, options.output, out);
-    } else {
-      merge_row_parts(ordered, options.output, out);
-    }
-    return kExitDone;
-  }
-  if (kind != "render" && kind != "compare") {
-    throw InputError(parts.front().part.string() + ": " + kind +
-                     " parts cannot be merged by this tumble");
-  }
-  const VideoMerge merge =
-      merge_video_parts(parts, options.output, [&] { return guard.interrupted(); });
-  if (merge.interrupted) {
+/// Every kind of part this tumble merges.
+const PartKinds& known_part_kinds() {
+  static const PartKinds kinds(
+      {&bench_parts(), &stability_parts(), &inspect_parts(), &render_parts(), &compare_parts()});
+  return kinds;
+}
+
+int merge_to_output(const MergeOptions& options, const InterruptGuard& guard, std::ostream& out,
+                    std::ostream& err) {
+  const MergeOutcome merged = merge_parts(known_part_kinds(), options.parts, options.output,
+                                          [&] { return guard.interrupted(); });
+  if (merged.interrupted) {
     guard.report(err, "merge", options.output.string());
     return kExitInterrupted;
   }
-  if (!options.quiet) {
-    out << "tumble merge: " << parts.size() << (parts.size() == 1 ? " part, " : " parts, ")
-        << merge.frames << (merge.frames == 1 ? " frame" : " frames") << " written to '"
-        << options.output.string() << "'" << (merge.copied ? " (joined without re-encoding)" : "")
-        << "\n";
-  }
+  if (!options.quiet) out << merged.summary;
   return kExitDone;
 }
 
@@ -76,7 +61,7 @@ CLI::App& add_merge_command(CLI::App& cli, MergeOptions& options) {
 int run_merge(const MergeOptions& options, std::ostream& out, std::ostream& err) {
   const InterruptGuard guard;
   return run_guarded(
-      "merge", err, [&] { return merge_parts(options, guard, out, err); },
+      "merge", err, [&] { return merge_to_output(options, guard, out, err); },
       [&] {
         if (!guard.interrupted()) return -1;
         guard.report(err, "merge", options.output.string());

@@ -14,15 +14,15 @@
 #include <CLI/CLI.hpp>
 
 #include "app/analysis/blow_up.hpp"
-#include "app/commands/exit_status.hpp"
+#include "app/support/exit_status.hpp"
 #include "app/support/interrupt_guard.hpp"
 #include "app/support/printf_number.hpp"
 #include "app/support/progress_bar.hpp"
+#include "app/video/video_part.hpp"
 #include "command_line.hpp"
 #include "engine/simulation/simulation.hpp"
-#include "render/image_sink.hpp"
+#include "media/image_sink.hpp"
 #include "video_options_cli.hpp"
-#include "video_part.hpp"
 
 namespace tumble::app {
 namespace {
@@ -45,7 +45,7 @@ int render_scene(const RenderOptions& options, const InterruptGuard& guard, std:
   job_options["dt"] = plan.scene.dt;
   const std::string manifest = shard_video_frames(options, "render", plan.scene, plan.total_frames,
                                                   job_options, plan.frames);
-  std::unique_ptr<render::ImageSink> sink = open_render_output(
+  std::unique_ptr<media::ImageSink> sink = open_render_output(
       options, plan.settings, plan.frames.first, scene_inputs(plan.scene), manifest);
 
   // Meshes, simulation, renderer.
@@ -56,7 +56,7 @@ int render_scene(const RenderOptions& options, const InterruptGuard& guard, std:
   // drawn and written.
   const FrameRange range = plan.frames;
   ProgressBar bar(err, range.end - range.first, "frames", progress);
-  render::Image image;
+  Image image;
   for (std::size_t frame = 0; frame < range.end; ++frame) {
     if (guard.interrupted()) break;
     job.advance_to(frame);

@@ -2,7 +2,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "app/commands/exit_status.hpp"
+#include "app/support/exit_status.hpp"
 #include "command_line.hpp"
 #include "video_options_cli.hpp"
 

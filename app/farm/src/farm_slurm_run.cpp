@@ -8,9 +8,9 @@
 #include <sstream>
 #include <thread>
 
-#include "app/farm/farm_process.hpp"
 #include "app/support/file_write.hpp"
 #include "base/errors.hpp"
+#include "base/process.hpp"
 
 namespace tumble::app {
 
@@ -39,16 +39,18 @@ std::string log_tail(const std::filesystem::path& log) {
   return line.empty() ? "" : ": " + line;
 }
 
+/// Runs a Slurm tool (a missing one throws tumble::InputError "sbatch not found on PATH"); one
+/// that exits 127 (a wrapper that cannot run it) is named with its last line.
 ProcessResult slurm_tool(const std::vector<std::string>& argv) {
   ProcessResult result = run_process(argv);
-  if (result.status == 127) throw InputError(argv[0] + ": " + last_line(result.err));
+  if (result.shell_status() == 127) throw InputError(argv[0] + ": " + last_line(result.err));
   return result;
 }
 
 std::string submit(const std::vector<std::string>& argv) {
   const ProcessResult result = slurm_tool(argv);
   if (result.status != 0) {
-    throw InputError("sbatch failed (exit status " + std::to_string(result.status) +
+    throw InputError("sbatch failed (exit status " + std::to_string(result.shell_status()) +
                      "): " + last_line(result.err));
   }
   return parsable_job_id(result.out);

@@ -7,9 +7,9 @@
 #include <iterator>
 #include <map>
 
-#include "app/support/child_process.hpp"
 #include "app/support/file_write.hpp"
 #include "base/errors.hpp"
+#include "media/video_probe.hpp"
 
 namespace tumble::app {
 
@@ -89,18 +89,7 @@ std::string shard_list(const std::vector<int>& indexes, int count) {
 /// ilst comment atom; WebM: the Matroska COMMENT tag), read with one small ffprobe call.
 PartManifest read_video_manifest(const std::filesystem::path& part) {
   const std::string name = part.string();
-  ChildResult probe;
-  try {
-    probe = run_child({"ffprobe", "-v", "error", "-show_entries", "format_tags=comment", "-of",
-                       "default=noprint_wrappers=1:nokey=1", name});
-  } catch (const InputError& error) {
-    throw InputError(name + ": cannot read its part manifest: " + error.what());
-  }
-  if (probe.status != 0) {
-    throw InputError(name + ": not a readable video (ffprobe: " + last_lines(probe.err) + ")");
-  }
-  std::string comment = probe.out;
-  while (!comment.empty() && (comment.back() == '\n' || comment.back() == '\r')) comment.pop_back();
+  const std::string comment = media::video_comment(part);
   const json top = json::parse(comment, nullptr, false);
   if (comment.empty() || top.is_discarded() || !top.is_object() || !top.contains("tumble_part")) {
     throw InputError(name +

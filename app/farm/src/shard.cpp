@@ -99,4 +99,12 @@ std::size_t shard_size(std::size_t total, Shard shard, ShardSplit split) {
   return total / count + (index < total % count ? 1 : 0);
 }
 
+std::vector<std::size_t> shard_items(std::size_t total, Shard shard) {
+  std::vector<std::size_t> items;
+  for (std::size_t i = 0; i < total; ++i) {
+    if (in_shard(i, total, shard, ShardSplit::kStrided)) items.push_back(i);
+  }
+  return items;
+}
+
 }  // namespace tumble::app

@@ -6,12 +6,12 @@
 // takes the GIL at most every 50 ms to run the interpreter's signal handlers (Ctrl-C).
 #include <pybind11/stl.h>
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "app/analysis/simulation_run.hpp"
-#include "app/support/csv_writer.hpp"
 #include "engine/simulation/simulation.hpp"
 #include "json_python.hpp"
 #include "python_support.hpp"
@@ -20,18 +20,10 @@
 namespace tumble::python {
 namespace {
 
-/// What tumble.Trajectory holds: the bodies, the recorded states, and the run's summary.
-struct TrajectoryResult {
-  std::vector<engine::BodyModel> bodies;
-  std::vector<double> times;
-  std::vector<std::vector<engine::BodyState>> states;  ///< one per recorded step
-  app::RunSummary summary;
-
-  void record(const engine::Simulation& simulation) {
-    if (bodies.empty()) bodies = simulation.bodies();
-    times.push_back(simulation.time());
-    states.push_back(simulation.states());
-  }
+/// What tumble.Trajectory holds: the run's recorded trajectory (bodies, times, states,
+/// summary), as the library returns it, with its numpy views.
+struct TrajectoryResult : app::Trajectory {
+  explicit TrajectoryResult(app::Trajectory run) : app::Trajectory(std::move(run)) {}
 
   /// A (N, B, width) array of `value(body, state)` over the recorded steps.
   template <int width, typename Value>
@@ -50,13 +42,6 @@ struct TrajectoryResult {
     }
     return out;
   }
-
-  /// The CSV `tumble simulate --csv PATH` writes for the same run (written atomically).
-  void write_csv(const std::string& path) const {
-    app::TrajectoryCsv csv(path);
-    for (std::size_t k = 0; k < times.size(); ++k) csv.write_rows(times[k], bodies, states[k]);
-    csv.commit();
-  }
 };
 
 using Vector1d = Eigen::Matrix<double, 1, 1>;
@@ -72,24 +57,21 @@ app::SceneDescription scene_of(const py::object& scene) {
   return naming_files({path}, [&] { return app::load_scene(path); });
 }
 
-TrajectoryResult simulate(const py::object& scene, const app::SimulateOptions& options) {
+TrajectoryResult simulate(const py::object& scene, app::SimulateOptions options) {
   const std::string path =
       py::isinstance<py::dict>(scene) ? std::string() : std::string(py::str(scene));
-  app::SimulationRun run(options, scene_of(scene));
-  TrajectoryResult result;
+  app::SceneDescription description = scene_of(scene);
+  options.scene = description.file;
   SignalCheck check;
-  bool completed = false;
+  std::optional<app::Trajectory> run;
   {
     py::gil_scoped_release release;
-    completed = naming_files({path}, [&] {
-      return run.run([&](const engine::Simulation& s) { result.record(s); },
-                     [&] { return check(); });
+    run = naming_files({path}, [&] {
+      return app::run_simulation(options, std::move(description), [&] { return check(); });
     });
   }
   check.raise_if_interrupted();
-  if (!completed) throw std::runtime_error("simulate: stopped without a signal");
-  result.summary = run.summary();
-  return result;
+  return TrajectoryResult(std::move(*run));
 }
 
 /// Trajectory's arrays of the recorded states, each computed as the CSV writer computes its
@@ -186,7 +168,7 @@ to_csv(path) writes the CSV the command writes for the same run, byte for byte.
           [](const TrajectoryResult& r, const py::object& path) {
             const std::string file = py::str(py::module_::import("os").attr("fspath")(path));
             py::gil_scoped_release release;
-            r.write_csv(file);
+            app::write_trajectory_csv(r, file);
           },
           py::arg("path"),
           "Writes the CSV `tumble simulate --csv PATH` writes for this run (atomically).")

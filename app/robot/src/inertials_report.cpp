@@ -1,12 +1,14 @@
-// `tumble inertials`' comparison, as a table and as JSON, and the rewritten file.
+// `tumble inertials`' comparison, as a table and as JSON.
 #include "app/robot/inertials_report.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <ostream>
 
 #include "app/robot/rewrite.hpp"
+#include "app/support/exit_status.hpp"
 #include "app/support/file_write.hpp"
 #include "base/errors.hpp"
 #include "base/file_checks.hpp"
@@ -30,8 +32,7 @@ const char* format_name(robot::RobotFormat format) {
 
 /// "%.6g" of each value, space-separated; values within rounding of zero next to `scale`
 /// (the row's largest by default) are written 0, not as -5.8e-20.
-std::string comparison_numbers(const Eigen::Ref<const Eigen::VectorXd>& values,
-                               double scale = 0.0) {
+std::string numbers(const Eigen::Ref<const Eigen::VectorXd>& values, double scale = 0.0) {
   if (scale == 0.0) scale = values.cwiseAbs().maxCoeff();
   std::string out;
   char buffer[32];
@@ -195,26 +196,21 @@ std::string format_comparison(const robot::Robot& robot, const std::vector<LinkC
     out += row("", "stated",
                c ? (link.result.mass_from_density ? "computed (density)" : "computed") : "computed",
                "relative difference");
-    out +=
-        row("mass", s && s->mass ? comparison_numbers(Eigen::Matrix<double, 1, 1>(*s->mass)) : "-",
-            c ? comparison_numbers(Eigen::Matrix<double, 1, 1>(c->mass)) : "-",
-            relative(link.mass, tolerance, check));
+    out += row("mass", s && s->mass ? numbers(Eigen::Matrix<double, 1, 1>(*s->mass)) : "-",
+               c ? numbers(Eigen::Matrix<double, 1, 1>(c->mass)) : "-",
+               relative(link.mass, tolerance, check));
     const double size = c ? std::sqrt(c->inertia.trace() / (2.0 * c->mass)) : 0.0;
-    out += row(
-        "centre of mass", s ? comparison_numbers(s->center_of_mass, size) : "-",
-        c ? comparison_numbers(c->center_of_mass, std::max(size, c->center_of_mass.norm())) : "-",
-        relative(link.center_of_mass, tolerance, check));
-    out += row("moments", s && s->inertia ? comparison_numbers(moments_of(*s->inertia)) : "-",
-               c ? comparison_numbers(moments_of(c->inertia)) : "-",
-               relative(link.moments, tolerance, false));
-    out +=
-        row("inertia xx yy zz", s && s->inertia ? comparison_numbers(s->inertia->diagonal()) : "-",
-            c ? comparison_numbers(c->inertia.diagonal()) : "-", "");
-    out += row(
-        "inertia xy xz yz",
-        s && s->inertia ? comparison_numbers(off_diagonal(*s->inertia), s->inertia->norm()) : "-",
-        c ? comparison_numbers(off_diagonal(c->inertia), c->inertia.norm()) : "-",
-        relative(link.inertia, tolerance, check));
+    out += row("centre of mass", s ? numbers(s->center_of_mass, size) : "-",
+               c ? numbers(c->center_of_mass, std::max(size, c->center_of_mass.norm())) : "-",
+               relative(link.center_of_mass, tolerance, check));
+    out += row("moments", s && s->inertia ? numbers(moments_of(*s->inertia)) : "-",
+               c ? numbers(moments_of(c->inertia)) : "-", relative(link.moments, tolerance, false));
+    out += row("inertia xx yy zz", s && s->inertia ? numbers(s->inertia->diagonal()) : "-",
+               c ? numbers(c->inertia.diagonal()) : "-", "");
+    out += row("inertia xy xz yz",
+               s && s->inertia ? numbers(off_diagonal(*s->inertia), s->inertia->norm()) : "-",
+               c ? numbers(off_diagonal(c->inertia), c->inertia.norm()) : "-",
+               relative(link.inertia, tolerance, check));
     for (const std::string& problem : link.problems) out += "  ! " + problem + "\n";
     for (const std::string& note : link.notes) out += "  note: " + note + "\n";
   }
@@ -236,6 +232,18 @@ nlohmann::json comparison_to_json(const robot::Robot& robot,
 }
 
 namespace {
+
+robot::PackagePaths package_paths(const std::vector<std::string>& given) {
+  robot::PackagePaths out;
+  for (const std::string& entry : given) {
+    const std::size_t equals = entry.find('=');
+    if (equals == std::string::npos || equals == 0 || equals + 1 == entry.size()) {
+      throw InputError("--package-path '" + entry + "': expected NAME=DIR");
+    }
+    out.emplace_back(entry.substr(0, equals), entry.substr(equals + 1));
+  }
+  return out;
+}
 
 /// `properties` as -o writes them: a centre-of-mass coordinate or product of inertia within
 /// rounding of zero (1e-12 of the link's size or inertia: what summing a mesh's triangles
@@ -278,6 +286,13 @@ void write_atomically(const std::filesystem::path& output, const std::filesystem
 
 }  // namespace
 
+bool InertialsReport::failed() const {
+  for (const LinkComparison& link : links) {
+    if (link.result.error) return true;
+  }
+  return false;
+}
+
 std::vector<std::string> InertialsReport::errors() const {
   std::vector<std::string> out;
   for (const LinkComparison& link : links) {
@@ -288,13 +303,20 @@ std::vector<std::string> InertialsReport::errors() const {
 
 InertialsReport compute_inertials(const std::filesystem::path& file, const robot::ReadOptions& read,
                                   const robot::ComputeOptions& compute) {
-  InertialsReport report;
-  report.robot = robot::read_robot(file, read);
+  InertialsReport report{robot::read_robot(file, read),
+                         {},
+                         read.from == robot::GeometrySource::collision ? "collision" : "visual"};
   for (const robot::Link& link : report.robot.links) {
     report.links.push_back(compare_link(link, robot::compute_link_inertial(link, compute)));
   }
-  report.source = read.from == robot::GeometrySource::collision ? "collision" : "visual";
   return report;
+}
+
+InertialsReport inertials_report(const InertialsOptions& options) {
+  robot::ReadOptions read;
+  read.from = options.from;
+  read.packages = package_paths(options.package_paths);
+  return compute_inertials(options.robot, read, options.compute);
 }
 
 std::string rewritten_inertials(const InertialsReport& report, robot::InertialFrame frame) {
@@ -314,6 +336,41 @@ void write_inertials(const InertialsReport& report, const std::filesystem::path&
     throw InputError(errors.front() + "; nothing written to '" + output.string() + "'");
   }
   write_atomically(output, report.robot.file, rewritten_inertials(report, frame));
+}
+
+int write_inertials(const InertialsOptions& options, std::ostream& out, std::ostream& err) {
+  // A refused output fails before any work (and checked again when written).
+  if (options.output) checked_output(*options.output, {options.robot});
+  const InertialsReport report = inertials_report(options);
+  for (const LinkComparison& link : report.links) {
+    if (link.result.error) {
+      err << "tumble inertials: error: " << report.robot.file.string() << ": " << *link.result.error
+          << "\n";
+    }
+  }
+  if (options.json) {
+    out << comparison_to_json(report.robot, report.links, report.source, options.tolerance,
+                              options.check)
+               .dump(2)
+        << "\n";
+  } else {
+    out << format_comparison(report.robot, report.links, report.source, options.tolerance,
+                             options.check);
+  }
+  if (report.failed()) {
+    if (options.output) {
+      err << "tumble inertials: nothing written to '" << options.output->string()
+          << "': a link failed\n";
+    }
+    return kExitInputError;
+  }
+  if (options.output) write_inertials(report, *options.output, options.frame);
+  if (options.check) {
+    for (const LinkComparison& link : report.links) {
+      if (!within_tolerance(link, options.tolerance)) return kExitCheckFailed;
+    }
+  }
+  return kExitDone;
 }
 
 }  // namespace tumble::app

@@ -99,7 +99,7 @@ void RenderJob::advance_to(std::size_t frame) {
   }
 }
 
-void RenderJob::draw(render::Image& image) {
+void RenderJob::draw(Image& image) {
   impl_->renderer.render(build(), image);
 }
 

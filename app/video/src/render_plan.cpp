@@ -11,7 +11,7 @@
 #include "app/support/printf_number.hpp"
 #include "app/video/render_job.hpp"
 #include "base/errors.hpp"
-#include "render/image_sink.hpp"
+#include "media/image_sink.hpp"
 
 namespace tumble::app {
 namespace {
@@ -76,26 +76,26 @@ RenderSettings render_settings(const RenderOptions& options, const SceneDescript
 
 // H.264 and VP9 in yuv420p need even sides; that is checked here so the message says what to
 // change rather than quoting the encoder.
-std::unique_ptr<render::ImageSink> open_render_output(
+std::unique_ptr<media::ImageSink> open_render_output(
     const VideoOptions& options, const RenderSettings& settings, std::size_t first_frame,
     const std::vector<std::filesystem::path>& inputs, const std::string& part_manifest) {
-  const render::SinkKind kind = render::sink_kind(options.output);  // InputError if unknown
-  if ((kind == render::SinkKind::kMp4 || kind == render::SinkKind::kWebm) &&
+  const media::SinkKind kind = media::sink_kind(options.output);  // InputError if unknown
+  if ((kind == media::SinkKind::kMp4 || kind == media::SinkKind::kWebm) &&
       (settings.width % 2 != 0 || settings.height % 2 != 0)) {
     throw InputError("cannot write '" + options.output.string() +
-                     "': " + (kind == render::SinkKind::kMp4 ? "H.264" : "VP9") +
+                     "': " + (kind == media::SinkKind::kMp4 ? "H.264" : "VP9") +
                      " video needs an even width and height, got " +
                      std::to_string(settings.width) + "x" + std::to_string(settings.height) +
                      (options.size ? " (--size)" : " (the scene's render settings)"));
   }
-  render::SinkOptions sink;
+  media::SinkOptions sink;
   sink.width = settings.width;
   sink.height = settings.height;
   sink.fps = settings.fps;
   sink.first_index = first_frame;
   sink.inputs = inputs;
   sink.part_manifest = part_manifest;
-  return render::open_image_sink(options.output, sink);
+  return media::open_image_sink(options.output, sink);
 }
 
 std::size_t frame_count(double duration, double fps, double time_scale) {

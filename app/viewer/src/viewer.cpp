@@ -8,17 +8,17 @@
 
 #include "base/errors.hpp"
 #include "base/temporary_path.hpp"
-#include "render/image_sink.hpp"
-#include "render/png_io.hpp"
+#include "media/image_sink.hpp"
+#include "media/png_io.hpp"
 
 namespace tumble::app::viewer {
 namespace {
 
 /// Writes `image` to `file` through a temporary sibling, so a failed write leaves nothing.
-void write_png_atomically(const std::filesystem::path& file, const render::Image& image) {
+void write_png_atomically(const std::filesystem::path& file, const Image& image) {
   const std::filesystem::path temporary = temporary_sibling(file);
   try {
-    render::write_png(temporary, image);
+    media::write_png(temporary, image);
     std::filesystem::rename(temporary, file);
   } catch (...) {
     std::error_code ignored;
@@ -151,7 +151,7 @@ bool Viewer::wants_scene_image() const {
   return sink_ != nullptr;
 }
 
-void Viewer::frame_drawn(const render::Image* scene, const render::Image& window) {
+void Viewer::frame_drawn(const Image* scene, const Image& window) {
   // Screenshots: what the window shows.
   for (const std::filesystem::path& path : screenshots_) {
     try {
@@ -180,12 +180,12 @@ void Viewer::frame_drawn(const render::Image* scene, const render::Image& window
 void Viewer::start_recording(const std::filesystem::path& path) {
   if (sink_) return;
   recording_path_ = path.empty() ? fresh_name(".mp4") : path;
-  render::SinkOptions options;
+  media::SinkOptions options;
   options.width = renderer_.width();
   options.height = renderer_.height();
   options.fps = kRecordFps;
   try {
-    sink_ = render::open_image_sink(recording_path_, options);
+    sink_ = media::open_image_sink(recording_path_, options);
   } catch (const std::exception& error) {
     notify("recording " + recording_path_.string() + ": " + error.what(), true);
     return;
@@ -197,7 +197,7 @@ void Viewer::start_recording(const std::filesystem::path& path) {
 
 void Viewer::stop_recording() {
   if (!sink_) return;
-  std::unique_ptr<render::ImageSink> sink = std::move(sink_);
+  std::unique_ptr<media::ImageSink> sink = std::move(sink_);
   try {
     sink->finish();
     notify("recorded " + std::to_string(sink->frames()) + " frames to " + recording_path_.string());

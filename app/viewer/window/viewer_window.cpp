@@ -51,7 +51,7 @@ namespace {
 
 using viewer::InputEvent;
 
-/// The exit status of an interrupted command (app/commands/exit_status.hpp).
+/// The exit status of an interrupted command (app/support/exit_status.hpp).
 constexpr int kExitInterrupted = 130;
 
 /// SDL's video subsystem, for the software renderer; quit when it goes, if it started.
@@ -131,7 +131,7 @@ class SdlWindow {
   void request_size(int width, int height) { SDL_SetWindowSize(window_.get(), width, height); }
 
   /// Shows a frame, stretched over the window when their sizes differ.
-  void show(const render::Image& image) {
+  void show(const Image& image) {
     if (!texture_) return;
     SDL_UpdateTexture(texture_.get(), nullptr, image.rgba.data(), 4 * image.width);
     SDL_RenderCopy(renderer_.get(), texture_.get(), nullptr, nullptr);
@@ -256,8 +256,8 @@ class ViewerWindow {
   viewer::ScriptPlayer player_;
   Clock::time_point start_;
   FrameClock frame_clock_;
-  render::Image window_image_;
-  render::Image scene_image_;
+  Image window_image_;
+  Image scene_image_;
   double played_wall_ = 0.0;  // wall time while playing, and simulated time it covered
   double played_simulated_ = 0.0;
 };
@@ -373,7 +373,7 @@ void ViewerWindow::draw_frame(double wall) {
   const viewer::FrameStats stats = frame_clock_.stats();
   // The panels may start a recording while they are drawn: ask once, before the frame.
   const render::DrawList list = viewer_.frame();
-  render::Image* const scene = viewer_.wants_scene_image() ? &scene_image_ : nullptr;
+  Image* const scene = viewer_.wants_scene_image() ? &scene_image_ : nullptr;
   layer_.set_font_px(render::overlay_font_px(width_, height_, viewer_.session().font_scale()));
   const render::ExtraPass pass = layer_.pass(
       static_cast<float>(wall), [&] { panels_.draw(viewer_, stats, width_, height_); },

@@ -1,7 +1,7 @@
 #pragma once
 /// @file The one error type for bad input, shared by engine, render and app.
 ///
-/// Every command maps what happened to one exit status (app/commands/exit_status.hpp):
+/// Every command maps what happened to one exit status (app/support/exit_status.hpp):
 /// 0 done, 1 bad input (an InputError: one line naming the file and field), 3 the run blew up,
 /// 130 interrupted, 70 internal error. Anything thrown that is not an InputError is a bug and
 /// exits 70, never as "bad input".

@@ -7,7 +7,7 @@
 #include <functional>
 #include <memory>
 
-#include "render/image.hpp"
+#include "base/image.hpp"
 #include "render/renderer.hpp"
 
 struct ImGuiContext;

@@ -5,7 +5,7 @@
 
 #include <memory>
 
-#include "render/image.hpp"
+#include "base/image.hpp"
 
 namespace tumble::render {
 

@@ -37,8 +37,8 @@
 #include <functional>
 #include <memory>
 
+#include "base/image.hpp"
 #include "render/draw_list.hpp"
-#include "render/image.hpp"
 
 namespace tumble::render {
 

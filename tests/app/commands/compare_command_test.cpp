@@ -16,8 +16,8 @@
 #include <nlohmann/json.hpp>
 
 #include "base/errors.hpp"
-#include "render/image.hpp"
-#include "render/png_io.hpp"
+#include "base/image.hpp"
+#include "media/png_io.hpp"
 #include "support/command_test.hpp"
 #include "support/image_compare.hpp"
 #include "support/input_error.hpp"
@@ -27,7 +27,6 @@
 namespace tumble::app {
 namespace {
 
-using nlohmann::json;
 using ::testing::HasSubstr;
 using tumble::testing::fraction_differing;
 using tumble::testing::fresh_directory;
@@ -36,7 +35,7 @@ using tumble::testing::tumble_executable;
 
 /// A chunky box (moments 2, 3, 4) spun about its intermediate axis with a small wobble: the
 /// tumble amplifies integrator errors, so a first-order method ends far from a fourth-order one.
-json tumbling_scene() {
+nlohmann::json tumbling_scene() {
   return testing::SceneBuilder()
       .name("compare tumble")
       .duration(3.0)
@@ -47,8 +46,8 @@ json tumbling_scene() {
 }
 
 /// The w x h block of `image` whose top-left corner is (x, y).
-render::Image crop(const render::Image& image, int x, int y, int w, int h) {
-  render::Image out;
+tumble::Image crop(const tumble::Image& image, int x, int y, int w, int h) {
+  tumble::Image out;
   out.width = w;
   out.height = h;
   for (int row = y; row < y + h; ++row) {
@@ -128,7 +127,7 @@ TEST_F(CompareCommand, GridTilesDifferWhereTheIntegratorsDo) {
               path("frames") + "/' --size 640x480 --frames 90: --quiet");
   ASSERT_EQ(result.status, 0) << result.err;
   EXPECT_EQ(result.out, "");
-  const render::Image frame = render::read_png(dir_ / "frames" / "frame_000090.png");
+  const tumble::Image frame = media::read_png(dir_ / "frames" / "frame_000090.png");
   ASSERT_EQ(frame.width, 640);
   ASSERT_EQ(frame.height, 480);
 
@@ -136,10 +135,10 @@ TEST_F(CompareCommand, GridTilesDifferWhereTheIntegratorsDo) {
   const auto body = [&](int column, int row) {
     return crop(frame, column * 320, row * 240 + 110, 320, 130);
   };
-  const render::Image seed = body(0, 0);
-  const render::Image rk4 = body(1, 0);
-  const render::Image splitting4 = body(0, 1);
-  const render::Image empty = body(1, 1);
+  const tumble::Image seed = body(0, 0);
+  const tumble::Image rk4 = body(1, 0);
+  const tumble::Image splitting4 = body(0, 1);
+  const tumble::Image empty = body(1, 1);
   // seed-semi-implicit has tumbled elsewhere; rk4 and splitting4 agree to a few pixels.
   EXPECT_GT(fraction_differing(seed, rk4, 24), 0.02);
   EXPECT_LT(fraction_differing(rk4, splitting4, 24), 0.002);
@@ -156,7 +155,7 @@ TEST_F(CompareCommand, OverlayShowsEachRunInItsColourOverTheGhost) {
                               "overlay -o '" +
                               path("frames") + "/' --size 640x360 --frames 90: -q");
   ASSERT_EQ(result.status, 0) << result.err;
-  const render::Image frame = render::read_png(dir_ / "frames" / "frame_000090.png");
+  const tumble::Image frame = media::read_png(dir_ / "frames" / "frame_000090.png");
   ASSERT_EQ(frame.width, 640);
 
   // Outside the legend (top-left), classify the pixels that are not the row's background (the

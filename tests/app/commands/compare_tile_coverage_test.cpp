@@ -14,8 +14,8 @@
 
 #include "../frame/frame_scene_setup.hpp"
 #include "app/commands/compare_command.hpp"
-#include "app/commands/compare_panels.hpp"
 #include "app/frame/overlay_fit.hpp"
+#include "app/video/compare_panels.hpp"
 #include "render/overlay_layout.hpp"
 
 namespace tumble::app {
@@ -28,7 +28,7 @@ std::string demo_scene() {
   return text.str();
 }
 
-bool differs(const render::Image& a, const render::Image& b, int x, int y) {
+bool differs(const tumble::Image& a, const tumble::Image& b, int x, int y) {
   return !std::equal(a.pixel(x, y), a.pixel(x, y) + 3, b.pixel(x, y));
 }
 
@@ -36,9 +36,9 @@ bool differs(const render::Image& a, const render::Image& b, int x, int y) {
 /// and without the bodies and their items (the background alone).
 struct TileShot {
   render::OverlayPanel panel;
-  render::Image with;
-  render::Image without;
-  render::Image background;
+  tumble::Image with;
+  tumble::Image without;
+  tumble::Image background;
 
   TileShot(int width, int height, const TileText& text) {
     const testing::FrameSceneSetup setup(demo_scene(), width, height);

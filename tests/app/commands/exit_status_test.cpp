@@ -1,6 +1,6 @@
-// The one mapping from outcomes to exit statuses (app/commands/exit_status.hpp), in itself and
+// The one mapping from outcomes to exit statuses (app/support/exit_status.hpp), in itself and
 // as every command applies it through the `tumble` executable.
-#include "app/commands/exit_status.hpp"
+#include "app/support/exit_status.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "app/commands/exit_status.hpp"
+#include "app/support/exit_status.hpp"
 #include "support/command_test.hpp"
 #include "support/run_command.hpp"
 #include "support/scene_builder.hpp"

@@ -15,7 +15,7 @@
 
 #include "base/errors.hpp"
 #include "engine/simulation/simulation.hpp"
-#include "render/png_io.hpp"
+#include "media/png_io.hpp"
 #include "render/renderer.hpp"
 #include "support/command_test.hpp"
 #include "support/image_compare.hpp"
@@ -108,10 +108,10 @@ TEST_F(RenderCommand, Mp4HasTheSizeAndFrameCountAndMatchesThePngFrames) {
   const auto decoded = run_command("ffmpeg -v error -i '" + path("out.mp4") +
                                    "' -vf 'select=eq(n\\,6)' -vframes 1 '" + path("six.png") + "'");
   ASSERT_EQ(decoded.status, 0) << decoded.err;
-  const render::Image six = render::read_png(path("six.png"));
-  const render::Image png[3] = {render::read_png(dir_ / "frames" / png_name(5)),
-                                render::read_png(dir_ / "frames" / png_name(6)),
-                                render::read_png(dir_ / "frames" / png_name(7))};
+  const tumble::Image six = media::read_png(path("six.png"));
+  const tumble::Image png[3] = {media::read_png(dir_ / "frames" / png_name(5)),
+                                media::read_png(dir_ / "frames" / png_name(6)),
+                                media::read_png(dir_ / "frames" / png_name(7))};
   EXPECT_LT(mean_difference(six, png[1]), 2.5);
   const std::size_t same = pixels_differing(six, png[1], 48);
   const std::size_t before = pixels_differing(six, png[0], 48);
@@ -289,8 +289,8 @@ TEST_F(RenderCommand, NoOverlayLeavesTheTextOut) {
       render(scene + " -o " + path("without/") + " --size 320x192 --fps 10 --no-overlay -q");
   ASSERT_EQ(with.status, 0) << with.err;
   ASSERT_EQ(without.status, 0) << without.err;
-  const render::Image a = render::read_png(dir_ / "with" / png_name(1));
-  const render::Image b = render::read_png(dir_ / "without" / png_name(1));
+  const tumble::Image a = media::read_png(dir_ / "with" / png_name(1));
+  const tumble::Image b = media::read_png(dir_ / "without" / png_name(1));
   EXPECT_GT(mean_difference(a, b), 1.0);
   for (int y = 0; y < 40; ++y) {
     for (int x = 1; x < 100; ++x) {

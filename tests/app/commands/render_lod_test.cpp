@@ -7,7 +7,7 @@
 #include <numbers>
 
 #include "app/scene/render_settings.hpp"
-#include "render/png_io.hpp"
+#include "media/png_io.hpp"
 #include "support/command_test.hpp"
 #include "support/image_compare.hpp"
 #include "support/input_error.hpp"
@@ -67,8 +67,8 @@ TEST_F(RenderLod, TheSimplifiedDrawingLooksLikeTheFullMesh) {
                                     " -q --frames 3:4 -o " + path(lod + "/") + " --lod " + lod);
     ASSERT_EQ(result.status, 0) << result.err;
   }
-  const render::Image on = render::read_png(path("on/frame_000003.png"));
-  const render::Image off = render::read_png(path("off/frame_000003.png"));
+  const tumble::Image on = media::read_png(path("on/frame_000003.png"));
+  const tumble::Image off = media::read_png(path("off/frame_000003.png"));
   ASSERT_EQ(on.width, 640);
   // Under a pixel of outline error: differing pixels are a thin fraction of the frame.
   EXPECT_LT(testing::pixels_differing(on, off, 24), on.width * on.height / 200);

@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/mass/primitive_shapes.hpp"
-#include "render/png_io.hpp"
+#include "media/png_io.hpp"
 #include "support/command_test.hpp"
 #include "support/image_compare.hpp"
 #include "support/run_command.hpp"
@@ -91,19 +91,19 @@ TEST_F(ShapeBodyCommand, RenderDrawsTheShapesTrueGeometry) {
         run_command(tumble_executable() + " render " + file + " -o " + path(name + "/") +
                     " --size 160x96 --frames 0:1 --no-overlay -q");
     EXPECT_EQ(result.status, 0) << result.err;
-    return render::read_png(dir_ / name / "frame_000000.png");
+    return media::read_png(dir_ / name / "frame_000000.png");
   };
   const Eigen::Vector3d size(0.2, 0.5, 0.9);
-  const render::Image box = frame({{"shape", {{"box", {0.2, 0.5, 0.9}}}}}, "box");
-  const render::Image inertia = frame({{"inertia", box_inertia(size, 2.5)}}, "inertia");
+  const tumble::Image box = frame({{"shape", {{"box", {0.2, 0.5, 0.9}}}}}, "box");
+  const tumble::Image inertia = frame({{"inertia", box_inertia(size, 2.5)}}, "inertia");
   // Same box, drawn from the shape or rebuilt from the moments: rounding apart, the same image.
   EXPECT_LT(testing::fraction_differing(box, inertia, 8), 0.002);
   // A cylinder is drawn as a cylinder, not as the box an inertia with its moments gets.
   const engine::Shape cylinder = engine::Cylinder{0.3, 0.9};
   const Eigen::Matrix3d moments = engine::mass_properties_of_mass(cylinder, 2.5).inertia;
-  const render::Image drawn =
+  const tumble::Image drawn =
       frame({{"shape", {{"cylinder", {{"radius", 0.3}, {"length", 0.9}}}}}}, "cylinder");
-  const render::Image as_box = frame(
+  const tumble::Image as_box = frame(
       {{"inertia", {{"principal", {moments(0, 0), moments(1, 1), moments(2, 2)}}}}}, "as_box");
   EXPECT_GT(testing::fraction_differing(drawn, as_box, 8), 0.01);
 }

@@ -16,7 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "render/png_io.hpp"
+#include "media/png_io.hpp"
 #include "support/command_test.hpp"
 #include "support/image_compare.hpp"
 #include "support/run_command.hpp"
@@ -257,12 +257,12 @@ TEST_F(ShardMergeVideo, PngPartsMergeToTheUnshardedFramesAndEncodeOnce) {
   for (std::size_t k = 30; k < 44; ++k) expected.push_back(png_name(k));
   ASSERT_EQ(directory_entries(dir_ / "merged"), expected);  // no part.json in the whole
   for (std::size_t k = 30; k < 44; ++k) {
-    const render::Image merged = render::read_png(dir_ / "merged" / png_name(k));
-    const render::Image full = render::read_png(dir_ / "full" / png_name(k));
+    const tumble::Image merged = media::read_png(dir_ / "merged" / png_name(k));
+    const tumble::Image full = media::read_png(dir_ / "full" / png_name(k));
     EXPECT_EQ(tumble::testing::pixels_differing(merged, full), 0u) << k;
   }
-  const render::Image a = render::read_png(dir_ / "merged" / png_name(30));
-  const render::Image b = render::read_png(dir_ / "merged" / png_name(43));
+  const tumble::Image a = media::read_png(dir_ / "merged" / png_name(30));
+  const tumble::Image b = media::read_png(dir_ / "merged" / png_name(43));
   EXPECT_GT(tumble::testing::pixels_differing(a, b), 100u);  // the frames do change
 
   const CommandResult video = tumble("merge" + parts("/", {0, 1, 2}) + " -o " + path("m.mp4"));
@@ -281,8 +281,8 @@ TEST_F(ShardMergeVideo, CompareShardsMergeLikeTheUnshardedComparison) {
   const CommandResult merge = tumble("merge" + parts("/", {1, 0}) + " -o " + path("merged/"));
   ASSERT_EQ(merge.status, 0) << merge.err;
   for (std::size_t k = 0; k < 9; ++k) {
-    EXPECT_EQ(tumble::testing::pixels_differing(render::read_png(dir_ / "merged" / png_name(k)),
-                                                render::read_png(dir_ / "full" / png_name(k))),
+    EXPECT_EQ(tumble::testing::pixels_differing(media::read_png(dir_ / "merged" / png_name(k)),
+                                                media::read_png(dir_ / "full" / png_name(k))),
               0u)
         << k;
   }

@@ -10,6 +10,7 @@
 #include <map>
 #include <sstream>
 
+#include "app/analysis/stability_classes.hpp"
 #include "support/csv_reader.hpp"
 #include "support/run_command.hpp"
 

@@ -12,6 +12,7 @@
 #include "app/analysis/stability_runner.hpp"
 #include "app/analysis/stability_suite.hpp"
 #include "app/commands/simulate_command.hpp"
+#include "app/support/exit_status.hpp"
 #include "engine/dynamics/integrators.hpp"
 #include "support/run_command.hpp"
 #include "support/scene_builder.hpp"

@@ -12,7 +12,7 @@
 #include <fstream>
 #include <string>
 
-#include "render/png_io.hpp"
+#include "media/png_io.hpp"
 #include "support/command_test.hpp"
 #include "support/image_compare.hpp"
 #include "support/run_command.hpp"
@@ -41,7 +41,7 @@ constexpr PixelRegion kPanelRegion{kViewCommandWidth - 360, 40, kViewCommandWidt
 
 /// Pixels of `region` matching `test(r, g, b)`.
 template <typename Test>
-std::size_t count_pixels(const render::Image& image, PixelRegion region, Test test) {
+std::size_t count_pixels(const tumble::Image& image, PixelRegion region, Test test) {
   std::size_t count = 0;
   for (int y = region.y0; y < region.y1; ++y) {
     for (int x = region.x0; x < region.x1; ++x) {
@@ -65,7 +65,7 @@ bool dark(int r, int g, int b) {
 /// The window as the viewer shows it: the body (over 3000 orange pixels) in the view, and the
 /// control panel on the right, whose grey background (between the blue headers and the plot
 /// frames) covers at least a third of its region.
-void expect_body_and_panel(const render::Image& window) {
+void expect_body_and_panel(const tumble::Image& window) {
   ASSERT_EQ(window.width, kViewCommandWidth);
   ASSERT_EQ(window.height, kViewCommandHeight);
   EXPECT_GT(count_pixels(window, kSceneRegion, orange), 3000u);
@@ -106,7 +106,7 @@ class ViewCommand : public tumble::testing::CommandTest {
     return result;
   }
 
-  render::Image shot(const std::string& name) const { return render::read_png(dir_ / name); }
+  tumble::Image shot(const std::string& name) const { return media::read_png(dir_ / name); }
 
   std::string demo() const {
     return std::string(TUMBLE_SOURCE_DIR) + "/assets/scenes/t_handle_flip.json";
@@ -127,14 +127,14 @@ TEST_F(ViewCommand, DrawsTheBodyAndThePanelsAndSpacePauses) {
   ASSERT_EQ(result.status, 0) << result.err;
 
   // The body is drawn in the view and the control panel on the right, not over the view.
-  const render::Image playing1 = shot("playing1.png");
+  const tumble::Image playing1 = shot("playing1.png");
   expect_body_and_panel(playing1);
   EXPECT_EQ(count_pixels(playing1, PixelRegion{340, 240, kSceneRight, kSceneBottom}, dark), 0u)
       << "no panel over the middle of the view";
 
   // Playing: the body moves between screenshots; paused: the view is identical; Space again
   // resumes.
-  const render::Image paused1 = shot("paused1.png");
+  const tumble::Image paused1 = shot("paused1.png");
   EXPECT_GT(pixels_differing(playing1, shot("playing2.png"), 0, kSceneRegion), 500u);
   EXPECT_EQ(pixels_differing(paused1, shot("paused2.png"), 0, kSceneRegion), 0u);
   EXPECT_GT(pixels_differing(paused1, shot("resumed.png"), 0, kSceneRegion), 500u);
@@ -150,7 +150,7 @@ TEST_F(ViewCommand, RightStepsWhilePausedAndBackspaceResets) {
       "2.0 quit\n",
       "--paused '" + demo() + "'");
   ASSERT_EQ(result.status, 0) << result.err;
-  const render::Image start = shot("start.png");
+  const tumble::Image start = shot("start.png");
   // One 1 ms step turns the body a little (w ~ 10 rad/s: about half a degree).
   EXPECT_GT(pixels_differing(start, shot("stepped.png"), 0, kSceneRegion), 20u);
   // Reset returns to the first frame exactly.
@@ -172,7 +172,7 @@ TEST_F(ViewCommand, DragOrbitsTheCameraButNotOverAPanel) {
       "3.1 quit\n",
       "--paused '" + demo() + "'");
   ASSERT_EQ(result.status, 0) << result.err;
-  const render::Image orbited = shot("orbited.png");
+  const tumble::Image orbited = shot("orbited.png");
   EXPECT_GT(pixels_differing(shot("before.png"), orbited, 0, kSceneRegion), 2000u);
   EXPECT_EQ(pixels_differing(orbited, shot("over_panel.png"), 0, kSceneRegion), 0u);
   EXPECT_EQ(pixels_differing(orbited, shot("wheel_over_panel.png"), 0, kSceneRegion), 0u);
@@ -262,7 +262,7 @@ TEST_F(ViewCommand, PanelButtonsPlayPauseAndReset) {
       "3.5 quit\n",
       "--paused '" + demo() + "'");
   ASSERT_EQ(result.status, 0) << result.err;
-  const render::Image start = shot("start.png");
+  const tumble::Image start = shot("start.png");
   EXPECT_GT(pixels_differing(shot("playing1.png"), shot("playing2.png"), 0, kSceneRegion), 500u);
   EXPECT_EQ(pixels_differing(shot("paused1.png"), shot("paused2.png"), 0, kSceneRegion), 0u);
   EXPECT_GT(pixels_differing(start, shot("paused1.png"), 0, kSceneRegion), 500u);
@@ -287,7 +287,7 @@ TEST_F(ViewCommand, CtrlOOpensTheFilesSectionWhoseRecordButtonRecordsTheView) {
   // One second of wall time at 30 frames/s, give or take the frames around the clicks.
   EXPECT_NEAR(static_cast<double>(frames.size()), 31.0, 6.0);
   for (const char* name : {"frame_000000.png", "frame_000010.png"}) {
-    const render::Image frame = shot(std::string("frames/") + name);
+    const tumble::Image frame = shot(std::string("frames/") + name);
     EXPECT_EQ(frame.width, kViewCommandWidth);
     EXPECT_GT(count_pixels(frame, kSceneRegion, orange), 3000u) << name;
     EXPECT_EQ(count_pixels(frame, kPanelRegion, dark), 0u) << name << ": panels recorded";
@@ -336,7 +336,7 @@ TEST_F(ViewCommand, RealKeyPressesFromXdotoolReachTheViewer) {
                   tumble_executable() + "' view '" + demo() +
                   "' --script script.txt --output-dir . </dev/null & " + keys + "; wait\"");
   ASSERT_EQ(result.status, 0) << result.err;
-  const render::Image paused1 = shot("paused1.png");
+  const tumble::Image paused1 = shot("paused1.png");
   EXPECT_EQ(pixels_differing(paused1, shot("paused2.png"), 0, kSceneRegion), 0u);
   EXPECT_GT(pixels_differing(shot("playing.png"), paused1, 0, kSceneRegion), 500u);
   // Ctrl+P, with the modifier from the keyboard state.

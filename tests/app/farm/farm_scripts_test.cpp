@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "app/farm/farm_process.hpp"
+#include "base/process.hpp"
 #include "support/input_error.hpp"
 #include "support/run_command.hpp"
 

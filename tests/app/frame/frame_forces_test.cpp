@@ -90,7 +90,7 @@ TEST(FrameForces, SpringCoilIsInThePixelsAlongItsLength) {
   FrameBuilder builder(setup.description, setup.scene, setup.settings, forces_renderer());
   builder.observe(simulation);
   const render::DrawList list = builder.build(simulation);
-  const render::Image image = forces_renderer().render(list);
+  const tumble::Image image = forces_renderer().render(list);
   const auto found = coils(list);
   ASSERT_EQ(found.size(), 1u);
   const std::vector<Eigen::Vector3f>& points = found.front()->points;

@@ -34,8 +34,8 @@ std::string brick_scene() {
 /// overlay (panels and labels).
 struct OverlayShot {
   render::DrawList list;
-  render::Image with;
-  render::Image without;
+  tumble::Image with;
+  tumble::Image without;
 
   OverlayShot(int width, int height, double font_scale = 1.0) {
     const SceneDescription description =

@@ -150,7 +150,7 @@ TEST(SpringDemo, CoilIsDrawnBetweenAnchorAndRacket) {
     list.labels.clear();
     const render::Polyline* found = coil(list);
     ASSERT_NE(found, nullptr) << "t = " << time;
-    const render::Image image = setup.renderer().render(list);
+    const tumble::Image image = setup.renderer().render(list);
     const Eigen::Vector3d centre = simulation.states()[0].position;
     int frame_red = 0;
     for (std::size_t i = 0; i < found->points.size(); i += 8) {

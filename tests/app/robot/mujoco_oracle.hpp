@@ -115,7 +115,7 @@ struct Agreement {
   }
 };
 
-/// Prints the agreement (the README's table quotes these lines) and expects mass, centre of
+/// Prints the agreement (docs/inertials.md's table quotes these lines) and expects mass, centre of
 /// mass and moments within `tolerance`, the tensor in the body's axes within
 /// `tensor_tolerance` (MuJoCo's own eigen decomposition limits it to about 1e-7).
 inline void expect_agreement(const Agreement& agreement, const std::string& what, double tolerance,

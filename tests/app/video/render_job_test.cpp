@@ -73,7 +73,7 @@ TEST_F(RenderJobTest, FramesShowTheLastStepAtOrBeforeTheirTime) {
   }
   // The last step is the short one that ends exactly at the duration (34 steps).
   EXPECT_EQ(job.simulation().time(), 1.0);
-  render::Image image;
+  tumble::Image image;
   job.draw(image);
   EXPECT_EQ(image.width, 64);
   EXPECT_EQ(image.height, 48);
@@ -111,7 +111,7 @@ TEST_F(RenderJobTest, AJobFromASharedCompiledSceneIsTheJobOfItsOwnPlan) {
   const engine::BodyState& b = own.simulation().states()[0];
   EXPECT_EQ(a.orientation.coeffs(), b.orientation.coeffs());
   EXPECT_EQ(a.angular_momentum, b.angular_momentum);
-  render::Image from_shared, from_own;
+  tumble::Image from_shared, from_own;
   shared.draw(from_shared);
   own.draw(from_own);
   EXPECT_TRUE(from_shared.rgba == from_own.rgba);

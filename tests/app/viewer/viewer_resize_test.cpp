@@ -13,8 +13,8 @@
 
 #include "app/viewer/viewer.hpp"
 #include "app/viewer/viewer_panels.hpp"
+#include "media/png_io.hpp"
 #include "render/overlay_layout.hpp"
-#include "render/png_io.hpp"
 #include "render/renderer.hpp"
 #include "support/command_test.hpp"
 #include "support/scene_builder.hpp"
@@ -65,7 +65,7 @@ TEST_F(ViewerResize, FramesTakeTheNewSizeAndTheOverlayItsText) {
   for (const auto& [width, height] :
        std::vector<std::pair<int, int>>{{1280, 720}, {480, 270}, {1920, 1080}, {700, 900}}) {
     ASSERT_TRUE(viewer_->resize(width, height));
-    const render::Image image = renderer_->render(viewer_->frame());
+    const tumble::Image image = renderer_->render(viewer_->frame());
     EXPECT_EQ(image.width, width);
     EXPECT_EQ(image.height, height);
     EXPECT_EQ(overlay_font_px(), render::overlay_font_px(width, height)) << width << "x" << height;
@@ -119,7 +119,7 @@ TEST_F(ViewerResize, ARecordingInProgressIsFinishedAtItsSize) {
   ASSERT_TRUE(viewer_->recording());
   for (int i = 0; i < 3; ++i) {
     viewer_->update(1.0 / kRecordFps);
-    render::Image scene = renderer_->render(viewer_->frame());
+    tumble::Image scene = renderer_->render(viewer_->frame());
     viewer_->frame_drawn(&scene, scene);
   }
   ASSERT_TRUE(viewer_->resize(480, 270));
@@ -133,7 +133,7 @@ TEST_F(ViewerResize, ARecordingInProgressIsFinishedAtItsSize) {
   const std::vector<std::string> frames = testing::directory_entries(dir_ / "frames");
   ASSERT_GE(frames.size(), 3u);
   for (const std::string& name : frames) {
-    const render::Image frame = render::read_png(dir_ / "frames" / name);
+    const tumble::Image frame = media::read_png(dir_ / "frames" / name);
     EXPECT_EQ(frame.width, 320) << name;
     EXPECT_EQ(frame.height, 240) << name;
   }

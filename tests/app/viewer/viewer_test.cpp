@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "render/png_io.hpp"
+#include "media/png_io.hpp"
 #include "render/renderer.hpp"
 #include "support/command_test.hpp"
 #include "support/scene_builder.hpp"
@@ -39,8 +39,8 @@ KeyEvent press(Key key, bool ctrl = false) {
 }
 
 /// An image of one colour, to tell the scene image from the window image.
-render::Image solid(int width, int height, std::uint8_t grey) {
-  render::Image image;
+tumble::Image solid(int width, int height, std::uint8_t grey) {
+  tumble::Image image;
   image.width = width;
   image.height = height;
   image.rgba.assign(static_cast<std::size_t>(4 * width * height), grey);
@@ -73,9 +73,9 @@ class ViewerApp : public testing::CommandTest {
   void key(Key k, bool ctrl = false) { viewer_->handle(press(k, ctrl), false, false); }
 
   /// One frame of the window loop: time passes, the frame is drawn and handed back.
-  render::Image frame(double wall_seconds) {
+  tumble::Image frame(double wall_seconds) {
     viewer_->update(wall_seconds);
-    render::Image image = renderer_->render(viewer_->frame());
+    tumble::Image image = renderer_->render(viewer_->frame());
     viewer_->frame_drawn(&image, image);
     return image;
   }
@@ -255,13 +255,13 @@ TEST_F(ViewerApp, CtrlPWritesTheWindowImageAfterTheNextFrame) {
   key(Key::kP, true);
   EXPECT_EQ(directory_entries(dir_), std::vector<std::string>{"scene.json"});  // not before a frame
   viewer_->update(0.1);
-  const render::Image window = renderer_->render(viewer_->frame());
-  const render::Image scene = solid(window.width, window.height, 10);
+  const tumble::Image window = renderer_->render(viewer_->frame());
+  const tumble::Image scene = solid(window.width, window.height, 10);
   viewer_->frame_drawn(&scene, window);
 
   const std::filesystem::path shot = dir_ / "scene-1.png";
   ASSERT_TRUE(std::filesystem::exists(shot));
-  const render::Image written = render::read_png(shot);
+  const tumble::Image written = media::read_png(shot);
   EXPECT_EQ(written.width, 320);
   EXPECT_EQ(written.height, 240);
   EXPECT_TRUE(written.rgba == window.rgba);
@@ -290,8 +290,8 @@ TEST_F(ViewerApp, RecordsAFrameEachThirtiethOfAWallSecond) {
   viewer_->start_recording(frames.string() + "/");
   ASSERT_TRUE(viewer_->recording());
   EXPECT_TRUE(viewer_->wants_scene_image());
-  const render::Image scene = solid(320, 240, 77);
-  const render::Image window = solid(320, 240, 200);
+  const tumble::Image scene = solid(320, 240, 77);
+  const tumble::Image window = solid(320, 240, 200);
   // Eight frames 1/8 s apart: 1 s of wall time. Rule (Viewer::frame_drawn): after wall time S
   // since the start, frames 0 .. floor(S x kRecordFps) have been written, so floor(30) + 1.
   for (int i = 0; i < 8; ++i) {
@@ -310,16 +310,16 @@ TEST_F(ViewerApp, RecordsAFrameEachThirtiethOfAWallSecond) {
   EXPECT_EQ(count, 31u);
   ASSERT_TRUE(std::filesystem::exists(frames / "frame_000030.png"));
   // Frames are the scene image (without the panels), not the window's.
-  EXPECT_TRUE(render::read_png(frames / "frame_000030.png").rgba == scene.rgba);
-  EXPECT_TRUE(render::read_png(frames / "frame_000000.png").rgba == scene.rgba);
+  EXPECT_TRUE(media::read_png(frames / "frame_000030.png").rgba == scene.rgba);
+  EXPECT_TRUE(media::read_png(frames / "frame_000000.png").rgba == scene.rgba);
 }
 
 TEST_F(ViewerApp, ARecordingStartedDuringAFrameBeginsWithTheNextSceneImage) {
   // The Record button is drawn with the panels, after the window loop decided whether to
   // capture the scene image: that frame has none, and none of the window's is recorded.
   const std::filesystem::path frames = dir_ / "frames";
-  const render::Image scene = solid(320, 240, 77);
-  const render::Image window = solid(320, 240, 200);
+  const tumble::Image scene = solid(320, 240, 77);
+  const tumble::Image window = solid(320, 240, 200);
   viewer_->update(0.1);
   viewer_->start_recording(frames.string() + "/");
   viewer_->frame_drawn(nullptr, window);
@@ -330,7 +330,7 @@ TEST_F(ViewerApp, ARecordingStartedDuringAFrameBeginsWithTheNextSceneImage) {
   EXPECT_EQ(viewer_->notices().back().text, "recorded 4 frames to " + frames.string() + "/");
   for (const char* name : {"frame_000000.png", "frame_000003.png"}) {
     ASSERT_TRUE(std::filesystem::exists(frames / name)) << name;
-    EXPECT_TRUE(render::read_png(frames / name).rgba == scene.rgba) << name;
+    EXPECT_TRUE(media::read_png(frames / name).rgba == scene.rgba) << name;
   }
 }
 

@@ -20,8 +20,8 @@
 #include <vector>
 
 #include "app/viewer/view_options.hpp"
+#include "media/png_io.hpp"
 #include "render/overlay_layout.hpp"
-#include "render/png_io.hpp"
 #include "support/command_test.hpp"
 #include "support/run_command.hpp"
 #include "support/scene_builder.hpp"
@@ -72,7 +72,7 @@ bool blue(const std::uint8_t* p) {
   return p[0] < 60 && p[2] > p[0] + 45;
 }
 
-const std::uint8_t* pixel(const render::Image& image, int x, int y) {
+const std::uint8_t* pixel(const tumble::Image& image, int x, int y) {
   return image.rgba.data() + 4 * (static_cast<std::size_t>(y) * image.width + x);
 }
 
@@ -80,7 +80,7 @@ const std::uint8_t* pixel(const render::Image& image, int x, int y) {
 struct Box {
   int x0 = 1 << 20, y0 = 1 << 20, x1 = 0, y1 = 0;
 };
-Box plate_box(const render::Image& image, int right) {
+Box plate_box(const tumble::Image& image, int right) {
   Box box;
   for (int y = 0; y < image.height; ++y) {
     for (int x = 0; x < right; ++x) {
@@ -93,7 +93,7 @@ Box plate_box(const render::Image& image, int right) {
 }
 
 /// Lengths of the runs of blue pixels down column `x`, top first.
-std::vector<int> blue_runs(const render::Image& image, int x) {
+std::vector<int> blue_runs(const tumble::Image& image, int x) {
   std::vector<int> runs;
   int run = 0;
   for (int y = 0; y < image.height; ++y) {
@@ -142,7 +142,7 @@ class ViewerWindowResize : public tumble::testing::CommandTest {
   /// Checks the screenshot `name` of a `width` x `height` window.
   void expect_window(const std::string& name, int width, int height) {
     SCOPED_TRACE(name);
-    const render::Image image = render::read_png(dir_ / name);
+    const tumble::Image image = media::read_png(dir_ / name);
     ASSERT_EQ(image.width, width);
     ASSERT_EQ(image.height, height);
     const float font = render::overlay_font_px(width, height, kFontScale);

@@ -216,7 +216,7 @@ TEST(StiffSpring, SemiImplicitEulerStaysBoundedJustBelowTheLimit) {
 // bounded; released from rest, the energy reaches at most 1/(1 - a/2) times E0 for a = wn h
 // (see the modified energy above). At a = 1.5 that is 4x: the default limit of 10 accepts the
 // run. At a = 1.9 it is 20x (the first step alone reaches 10.4x): the default limit reports it,
-// as the README documents, and a limit above the bound accepts it.
+// as docs/simulate.md documents, and a limit above the bound accepts it.
 TEST(StiffSpring, DefaultBlowUpRuleAcceptsBoundedSwingsBelowTheFactor) {
   const SpringCase c = stiff_spring();
   {

@@ -1,27 +1,25 @@
 #pragma once
-/// @file A run of a scene without rendering, as `tumble simulate` makes it and the Python
-/// module's tumble.simulate: the options over the scene, checked before anything runs; the
-/// steps, with the recorded ones handed to a callback (the CSV writer, numpy arrays); each
-/// body's invariants watched; a summary at the end.
+/// @file A scene run without rendering (`tumble simulate` as library calls): the options over the
+/// scene, the run with its invariants watched, the trajectory it records, the CSV it writes and
+/// the summary of how well the invariants held.
 
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <iosfwd>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
 #include "app/scene/scene.hpp"
-
-namespace tumble::engine {
-class Simulation;
-}  // namespace tumble::engine
+#include "engine/body/rigid_body.hpp"
 
 namespace tumble::app {
 
-/// What a run was asked to do. Options given here override the scene.
+/// What `tumble simulate` was asked to do. Options given here override the scene.
 struct SimulateOptions {
   std::filesystem::path scene;
   std::optional<std::string> integrator;
@@ -31,7 +29,7 @@ struct SimulateOptions {
   std::optional<double> absolute_tolerance;  ///< their absolute tolerance
   std::optional<double> blowup_factor;
   std::optional<std::filesystem::path> csv;
-  long long every = 1;  ///< record every Nth step (the first and the last always)
+  long long every = 1;  ///< write every Nth step (the first and the last always)
   bool json = false;
   bool list_integrators = false;
   bool allow_long = false;  ///< run beyond kMaxStepsWithoutAllowLong steps or kMaxCsvBytes of CSV
@@ -73,41 +71,70 @@ struct RunSummary {
   std::optional<std::string> blow_up;  ///< the one-line message, when the run blew up
 };
 
-/// The summary as one JSON object (what `tumble simulate --json` prints).
+/// The summary as one JSON object.
 nlohmann::json summary_to_json(const RunSummary& summary);
 
-/// The integrators with their order and properties (`tumble simulate --list-integrators
-/// --json`): name, order (-1: exact, 0: does not converge), adaptive, needs_torque_free,
-/// properties.
+/// The summary as readable text.
+std::string format_summary(const RunSummary& summary);
+
+/// One body at one recorded time, as the trajectory CSV gives it: position, orientation of the
+/// user's body frame, velocity, world angular velocity, angular momentum and energy.
+struct BodySample {
+  Eigen::Vector3d position;
+  Eigen::Quaterniond orientation;
+  Eigen::Vector3d velocity;
+  Eigen::Vector3d angular_velocity;
+  Eigen::Vector3d angular_momentum;
+  double energy = 0.0;
+};
+
+/// A run's recorded trajectory: the states at the times the CSV would hold (the first, every
+/// `every`th step, the last; after a blow-up the last good one), and the run's summary.
+struct Trajectory {
+  std::vector<engine::BodyModel> bodies;
+  std::vector<double> times;
+  std::vector<std::vector<engine::BodyState>> states;  ///< states[k][i]: body i at times[k]
+  std::vector<std::filesystem::path> inputs;           ///< the scene and the meshes it read
+  RunSummary summary;
+
+  /// Body `body` at recorded time `k`.
+  BodySample sample(std::size_t k, std::size_t body) const;
+};
+
+/// Loads `options.scene`, applies the options over it, checks them (InputError naming the file
+/// or option) and runs it to the end or a blow-up (summary.blow_up says which), recording the
+/// trajectory in memory (options.csv is not written; see write_trajectory_csv). `interrupted`,
+/// when given, is asked every 64 steps; when it says so the run stops where it is.
+Trajectory run_simulation(const SimulateOptions& options,
+                          const std::function<bool()>& interrupted = {});
+
+/// As above, for a scene already loaded (`options.scene` is then not read: a scene given as
+/// data, as the Python module's dicts are).
+Trajectory run_simulation(const SimulateOptions& options, SceneDescription scene,
+                          const std::function<bool()>& interrupted = {});
+
+/// Writes `trajectory` to `path` (atomically) byte for byte as `tumble simulate --csv` writes
+/// the same run.
+void write_trajectory_csv(const Trajectory& trajectory, const std::filesystem::path& path);
+
+/// `tumble simulate`'s run: as run_simulation, but streaming the rows into options.csv (its
+/// temporary created before the run, renamed into place at the end) instead of memory. Fills
+/// `summary`; returns 0, kExitBlowUp (the one line on `err`) or kExitInterrupted (nothing
+/// written).
+int simulate_scene(const SimulateOptions& options, const std::function<bool()>& interrupted,
+                   RunSummary& summary, std::ostream& err);
+
+/// The integrators: a table, or with `as_json` a JSON array of {name, order, adaptive,
+/// needs_torque_free, properties}.
+void list_integrators(bool as_json, std::ostream& out);
+
+/// The integrators as `tumble simulate --list-integrators --json` lists them.
 nlohmann::json integrators_to_json();
 
-/// Called with the simulation at every recorded step: the first, every `every`th, the last,
-/// and after a blow-up the last good one.
-using RecordStep = std::function<void(const engine::Simulation&)>;
-/// Polled every 64 steps; true stops the run (Ctrl-C).
-using StopRequested = std::function<bool()>;
+/// The summary as one JSON object.
+nlohmann::json summary_to_json(const RunSummary& summary);
 
-/// One run of a scene. The constructor applies `options` over `scene` and checks them all
-/// (tumble::InputError naming the option or the scene's field) before anything is read or run.
-class SimulationRun {
- public:
-  SimulationRun(const SimulateOptions& options, SceneDescription scene);
-
-  /// The scene with the options applied (for the files it reads: scene_inputs).
-  const SceneDescription& scene() const { return scene_; }
-
-  /// Compiles the scene (imports its meshes) and steps to the end or the blow-up, calling
-  /// `record` at the recorded steps. Returns false when `stop` asked it to stop (the summary
-  /// is then incomplete). Throws tumble::InputError for a scene the integrator cannot take.
-  bool run(const RecordStep& record, const StopRequested& stop);
-
-  /// What the run did; `blow_up` is "blow-up: " and describe_blow_up's words.
-  const RunSummary& summary() const { return summary_; }
-
- private:
-  SimulateOptions options_;
-  SceneDescription scene_;
-  RunSummary summary_;
-};
+/// The summary as readable text.
+std::string format_summary(const RunSummary& summary);
 
 }  // namespace tumble::app

@@ -1,25 +1,9 @@
 #pragma once
-/// @file `tumble compare`: one scene run with several integrators, rendered side by side.
-///
-/// Every run samples the same frame times as `tumble render` (frame k shows t_k = k *
-/// time_scale / fps; each run keeps the common dt). Two layouts:
-///  - grid: one panel per integrator in a near-square grid, all with the same camera (the
-///    first run's), each labelled with its integrator, dt and time and carrying its energy and
-///    |L| drift plots;
-///  - overlay: every run in one view, each in its own translucent colour, over a grey ghost of
-///    a reference run (`exact` when every body is torque-free or a heavy symmetric top,
-///    otherwise `dopri` at tolerance 1e-12) whose camera it uses, with a legend mapping colours to
-///    integrators.
-/// A run that blows up holds its last good state and says when it blew up; the others go on.
+/// @file `tumble compare`: its options (the job is app/video/compare_job.hpp).
 
-#include <cstddef>
-#include <filesystem>
 #include <iosfwd>
-#include <optional>
-#include <string>
-#include <vector>
 
-#include "app/video/render_job.hpp"
+#include "app/video/compare_job.hpp"
 
 namespace CLI {
 class App;
@@ -27,41 +11,8 @@ class App;
 
 namespace tumble::app {
 
-/// How the runs share the frame.
-enum class CompareLayout { kGrid, kOverlay };
-
-/// What `tumble compare` was asked to do. Options given here override the scene.
-/// (`size` is that of the whole frame.)
-struct CompareOptions : VideoOptions {
-  std::string integrators;      ///< "a,b,c": at least two, all different
-  std::string layout = "grid";  ///< "grid" or "overlay"
-  std::optional<double> dt;     ///< common time step of every run
-};
-
 /// Adds the `compare` subcommand and its options to `cli`, filling `options` when parsed.
 CLI::App& add_compare_command(CLI::App& cli, CompareOptions& options);
-
-/// Splits and checks --integrators: known names, at least two, no repeats. Throws
-/// tumble::InputError naming --integrators.
-std::vector<std::string> comparison_integrators(const std::string& text);
-
-/// Parses --layout ("grid" or "overlay"). Throws tumble::InputError naming --layout.
-CompareLayout parse_compare_layout(const std::string& text);
-
-/// Where the panels of a grid go in a frame.
-struct GridLayout {
-  int columns = 1;
-  int rows = 1;
-  int tile_width = 0;   ///< even, pixels
-  int tile_height = 0;  ///< even, pixels
-  int left = 0;         ///< x of the first column (the grid is centred in the frame)
-  int top = 0;          ///< y of the first row
-};
-
-/// A near-square grid for `panels` panels in a `width` x `height` frame: ceil(sqrt(n))
-/// columns and as many rows as needed (2 -> 2x1, 3 and 4 -> 2x2, 5 and 6 -> 3x2), equal tiles
-/// of even sides. Throws tumble::InputError naming --size when a tile would be under 16 pixels.
-GridLayout grid_layout(std::size_t panels, int width, int height);
 
 /// Runs the command. Returns 0, 1 (input, output or ffmpeg error: one line on `err`, nothing
 /// left under the output name), 3 (some run blew up: the output is complete, one warning line

@@ -1,7 +1,7 @@
 #pragma once
 /// @file `tumble merge PART... -o OUT`: the parts of a sharded command (`--shard I/N`) checked
 /// to be one job's, each shard exactly once, and joined into the output the unsharded command
-/// would have written (README, "More than one machine").
+/// would have written (docs/merge.md).
 
 #include <filesystem>
 #include <iosfwd>

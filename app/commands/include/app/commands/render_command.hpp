@@ -5,7 +5,7 @@
 #include <iosfwd>
 #include <string>
 
-#include "app/commands/exit_status.hpp"
+#include "app/support/exit_status.hpp"
 #include "app/video/render_job.hpp"
 
 namespace CLI {

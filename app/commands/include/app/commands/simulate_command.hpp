@@ -2,17 +2,9 @@
 /// @file `tumble simulate`: runs a scene without rendering, writes the trajectory as CSV and
 /// summarises how well the invariants held.
 
-#include <cstddef>
-#include <filesystem>
 #include <iosfwd>
-#include <optional>
-#include <string>
-#include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "app/analysis/simulation_run.hpp"
-#include "app/commands/exit_status.hpp"
 
 namespace CLI {
 class App;
@@ -22,9 +14,6 @@ namespace tumble::app {
 
 /// Adds the `simulate` subcommand and its options to `cli`, filling `options` when parsed.
 CLI::App& add_simulate_command(CLI::App& cli, SimulateOptions& options);
-
-/// The summary as readable text.
-std::string format_summary(const RunSummary& summary);
 
 /// Runs the command. Returns 0, kExitInputError (message on `err`) or kExitBlowUp (one line on
 /// `err`; the summary still goes to `out` and the CSV holds every row up to the last good step).

@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace tumble::app {
 
@@ -63,5 +64,8 @@ bool in_shard(std::size_t item, std::size_t total, Shard shard, ShardSplit split
 
 /// How many of `total` items belong to `shard` under `split`.
 std::size_t shard_size(std::size_t total, Shard shard, ShardSplit split);
+
+/// The strided shard's items of `total`: shard.index, shard.index + N, ...
+std::vector<std::size_t> shard_items(std::size_t total, Shard shard);
 
 }  // namespace tumble::app

@@ -1,9 +1,10 @@
 #pragma once
-/// @file `tumble inertials`' comparison of each link's stated inertial with the one its
-/// geometry gives, that comparison as a table and as JSON, and the file rewritten with the
-/// computed inertials (the command and the Python module's tumble.inertials).
+/// @file `tumble inertials` as library calls: each link's stated inertial compared with the one
+/// its geometry gives (inertials_report, returning data), that comparison as a table and as
+/// JSON, and the whole command (write_inertials).
 
 #include <filesystem>
+#include <iosfwd>
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,6 +16,22 @@
 #include "app/robot/robot_model.hpp"
 
 namespace tumble::app {
+
+/// What `tumble inertials` was asked to do.
+struct InertialsOptions {
+  std::filesystem::path robot;
+  robot::GeometrySource from = robot::GeometrySource::collision;
+  robot::ComputeOptions compute;
+  /// `--package-path NAME=DIR`, in the order given (ROS_PACKAGE_PATH is looked at after them).
+  std::vector<std::string> package_paths;
+  robot::InertialFrame frame = robot::InertialFrame::mesh;
+  bool json = false;
+  /// `-o`: the rewritten file.
+  std::optional<std::filesystem::path> output;
+  /// `--check`: exit kExitCheckFailed when a link differs by more than `tolerance`.
+  bool check = false;
+  double tolerance = 1e-3;
+};
 
 /// One link: what the file states, what was computed, and how far apart they are.
 struct LinkComparison {
@@ -54,19 +71,27 @@ nlohmann::json comparison_to_json(const robot::Robot& robot,
                                   const std::vector<LinkComparison>& links,
                                   const std::string& source, double tolerance, bool check);
 
-/// A robot file's links, each computed and compared.
+/// A robot file's links compared: the robot as read and one comparison per link, in order.
 struct InertialsReport {
   robot::Robot robot;
   std::vector<LinkComparison> links;
-  std::string source;  ///< "collision" or "visual": the geometry the links were computed from
-  /// One line per link whose geometry failed, "FILE: LINK...: WHY" (then nothing may be written).
+  /// "collision" or "visual": the geometry the inertials came from.
+  std::string source;
+  /// Whether some link's geometry failed (LinkComparison::result.error says why).
+  bool failed() const;
+  /// One line per failed link, "FILE: why", as the command prints them after "error: ".
   std::vector<std::string> errors() const;
 };
 
-/// Reads `file` and computes every link's inertial (tumble::InputError for a bad file; a link
-/// whose geometry fails is in the report, with its error).
+/// Reads `file` as `read` says and computes and compares every link's inertial as `compute`
+/// says; nothing is printed or written. Throws InputError for a file that cannot be read.
 InertialsReport compute_inertials(const std::filesystem::path& file, const robot::ReadOptions& read,
                                   const robot::ComputeOptions& compute);
+
+/// Reads `options.robot` (its --from geometry, --package-path) and computes and compares every
+/// link's inertial; nothing is printed or written. Throws InputError for a file that cannot be
+/// read.
+InertialsReport inertials_report(const InertialsOptions& options);
 
 /// The robot file's text with each computed inertial in place of the stated one (every other
 /// byte kept); coordinates and products of inertia within rounding of zero are written 0.
@@ -77,5 +102,10 @@ std::string rewritten_inertials(const InertialsReport& report, robot::InertialFr
 /// output cannot be written.
 void write_inertials(const InertialsReport& report, const std::filesystem::path& output,
                      robot::InertialFrame frame);
+
+/// The whole `tumble inertials`: the report on `out` (table or JSON), an error line per failed
+/// link on `err`, -o written atomically when no link failed. Returns kExitInputError when a link
+/// failed, kExitCheckFailed when --check found a difference, else kExitDone.
+int write_inertials(const InertialsOptions& options, std::ostream& out, std::ostream& err);
 
 }  // namespace tumble::app

@@ -4,14 +4,14 @@
 
 #include <cstdint>
 
-#include "render/image.hpp"
+#include "base/image.hpp"
 
 namespace tumble::app {
 
 /// Resizes `image` to `width` x `height` and fills it with an opaque `grey`.
-void fill_grey(render::Image& image, int width, int height, std::uint8_t grey);
+void fill_grey(Image& image, int width, int height, std::uint8_t grey);
 
 /// Copies `tile` into `frame` with its top-left corner at (x, y); the tile must fit.
-void paste_tile(const render::Image& tile, render::Image& frame, int x, int y);
+void paste_tile(const Image& tile, Image& frame, int x, int y);
 
 }  // namespace tumble::app

@@ -17,16 +17,19 @@
 
 #include "app/scene/render_settings.hpp"
 #include "app/scene/scene.hpp"
+#include "base/image.hpp"
 #include "render/draw_list.hpp"
-#include "render/image.hpp"
 #include "render/renderer.hpp"
 
 namespace tumble::engine {
 class Simulation;
 }  // namespace tumble::engine
 
-namespace tumble::render {
+namespace tumble::media {
 class ImageSink;
+}  // namespace tumble::media
+
+namespace tumble::render {
 class Renderer;
 }  // namespace tumble::render
 
@@ -120,7 +123,7 @@ class RenderJob {
   void advance_to(std::size_t frame);
 
   /// Draws the current state into `image` (storage reused).
-  void draw(render::Image& image);
+  void draw(Image& image);
 
   /// The draw list of the current state (what draw() renders).
   render::DrawList build() const;
@@ -136,8 +139,8 @@ class RenderJob {
 /// anything is rendered; videos need even sides, and the output may not be one of `inputs`
 /// (scene_inputs: the scene and its meshes). Throws tumble::InputError naming the path (unknown
 /// kind, odd sides, an input or a device as the output, filesystem, ffmpeg). A non-empty
-/// `part_manifest` makes the output a shard's part (render::SinkOptions::part_manifest).
-std::unique_ptr<render::ImageSink> open_render_output(
+/// `part_manifest` makes the output a shard's part (media::SinkOptions::part_manifest).
+std::unique_ptr<media::ImageSink> open_render_output(
     const VideoOptions& options, const RenderSettings& settings, std::size_t first_frame,
     const std::vector<std::filesystem::path>& inputs, const std::string& part_manifest = {});
 

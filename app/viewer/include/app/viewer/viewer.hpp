@@ -13,13 +13,13 @@
 #include "app/viewer/viewer_camera.hpp"
 #include "app/viewer/viewer_input.hpp"
 #include "app/viewer/viewer_session.hpp"
+#include "base/image.hpp"
 #include "render/draw_list.hpp"
-#include "render/image.hpp"
 #include "render/renderer.hpp"
 
-namespace tumble::render {
+namespace tumble::media {
 class ImageSink;
-}  // namespace tumble::render
+}  // namespace tumble::media
 
 namespace tumble::app::viewer {
 
@@ -79,7 +79,7 @@ class Viewer {
   /// captured when wants_scene_image() said so before the frame, else null; `window` is what
   /// the window shows (for screenshots). A recording takes frames only from scene images, so a
   /// recording started by a panel button during the frame begins with the next one.
-  void frame_drawn(const render::Image* scene, const render::Image& window);
+  void frame_drawn(const Image* scene, const Image& window);
 
   // --- Recording and screenshots ---------------------------------------------------------------
   bool recording() const { return sink_ != nullptr; }
@@ -121,7 +121,7 @@ class Viewer {
   double clock_ = 0.0;
   bool quit_ = false;
 
-  std::unique_ptr<render::ImageSink> sink_;
+  std::unique_ptr<media::ImageSink> sink_;
   std::filesystem::path recording_path_;
   double recorded_seconds_ = 0.0;  ///< wall time since the recording started
   std::size_t recorded_frames_ = 0;

@@ -7,7 +7,7 @@
 /// set parents are cache misses. The addresses are known many triangles ahead, and a prefetch a
 /// few triangles early overlaps those misses: on a shuffled million-triangle torus the integrals
 /// went from 82-131 to 32-42 ms and the parts from 16-22 to 16-17 ms, for ~1 ms more on the
-/// same torus in order (README, Speed). The edge counts and the weld gained nothing from it
+/// same torus in order (docs/performance.md). The edge counts and the weld gained nothing from it
 /// (measured), so they go without.
 
 #include <cstddef>
