@@ -9,9 +9,9 @@
 //   (7 + 56 eps) eps P,   P = sum_i |x_i - o_i| (|ad_j bd_k| + |ad_k bd_j|)   (eps = 2^-53),
 // the bound of Shewchuk's orient3d (J. R. Shewchuk, "Adaptive Precision Floating-Point Arithmetic
 // and Fast Robust Geometric Predicates", Discrete Comput. Geom. 18:305-363, 1997: orient3d's
-// first error bound, errboundA, with P evaluated in floating point). The bound depends only on the shape of the
-// expression, the same along any row or column of the determinant, so it holds for this
-// expansion along x - o. Each face's normal n = (a - o) x (b - o) and S = sum_i N_i, N_i =
+// first error bound, errboundA, with P evaluated in floating point). The bound depends only on the
+// shape of the expression, the same along any row or column of the determinant, so it holds for
+// this expansion along x - o. Each face's normal n = (a - o) x (b - o) and S = sum_i N_i, N_i =
 // |ad_j bd_k| + |ad_k bd_j|, are computed once (FacePlane); for a point, max_i |x_i - o_i| * S
 // bounds P from above to within a few roundings, so 8 eps * max|x - o| * S >= the bound above
 // (8 eps = 2^-50: multiplying by it is exact), and a computed determinant larger in magnitude
@@ -80,6 +80,17 @@ inline int certified_side(const FacePlane& plane, const Eigen::Vector3d& o,
   const double reach = std::max({std::abs(dx), std::abs(dy), std::abs(dz)});
   constexpr double kOrientationBound = 0x1p-50;  // 8 eps, above orient3d's (7 + 56 eps) eps
   const double bound = kOrientationBound * (reach * plane.s);
+  return det > bound ? 1 : (-det > bound ? -1 : 0);
+}
+
+/// The sign of the orientation of points a, b, c of a plane (positive counter-clockwise) when
+/// certain, else 0: Shewchuk's orient2d with its first error bound (see above).
+inline int certified_orientation_2d(double ax, double ay, double bx, double by, double cx,
+                                    double cy) {
+  const double left = (ax - cx) * (by - cy), right = (ay - cy) * (bx - cx);
+  const double det = left - right;
+  constexpr double kMinorBound = 0x1p-51;  // 4 eps, above orient2d's (3 + 16 eps) eps
+  const double bound = kMinorBound * (std::abs(left) + std::abs(right));
   return det > bound ? 1 : (-det > bound ? -1 : 0);
 }
 

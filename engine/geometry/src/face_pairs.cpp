@@ -1,25 +1,13 @@
-// Face pairs by a hashed grid over the faces' boxes, judged by a certified filter
-// (face_pairs.hpp).
+// Face pairs: coarse regions certified whole, the other pairs from a fine grid, judged by a
+// certified filter (face_pairs.hpp).
 //
-// Design.
-// - Candidates: a uniform grid of cell size c (twice the median extent of a sample of faces)
-//   holds each face in every cell its box touches. A face whose box spans more than two cells
-//   along an axis goes to a coarser level (cells 2c, 4c, ...) where it spans at most two, so a
-//   face is in at most eight cells (on the benchmark's torus, 3.4 on average). Two faces of one
-//   level whose boxes overlap share the cell of the low corner of their boxes' intersection;
-//   the pair is judged there only: in a cell, each entry knows along which axes the cell is one
-//   past its face's lowest cell (three bits), and the pair belongs to the cell exactly when no
-//   axis has the bit set for both. A face on a finer level looks itself up in the cells of the
-//   coarser levels, with the same rule. So every pair of faces whose boxes overlap is judged
-//   once, whatever the cell size; the cell size only decides the speed.
-// - Layout: cells are hashed; the entries are partitioned by the hash of their block of 16^3
-//   cells (so each partition stays spatially coherent: the faces it reads are near each other
-//   in memory for meshes written in any local order), then each partition is sorted by cell
-//   hash into buckets on its own, in cache. Partitions are taken by the threads in turn.
-// - Judging: the vertex indices two faces share say which test applies (face_pairs.hpp);
-//   orientation signs come from certified_orientation.hpp; what they leave open goes to
-//   ExactFaceTests. Counts are summed per thread and added up at the end, so the result does
-//   not depend on the number of threads.
+// Design. Each pair of faces whose boxes overlap belongs to one coarse cell: the one holding
+// the low corner of the boxes' intersection (face_grid.hpp; both faces touch that cell). A
+// coarse cell whose faces are certified apart (region_certificate.hpp) settles all its pairs
+// at once; on a smooth mesh that is every cell, at a cost linear in the faces. The faces
+// touching a cell that is not certified are placed in the fine grid (cells twice the faces'
+// median extent), and each of their pairs is judged if it belongs to such a cell. Counts are
+// summed per thread and added up at the end, so the result does not depend on the threads.
 #include "face_pairs.hpp"
 
 #include <algorithm>
@@ -27,31 +15,22 @@
 #include <atomic>
 #include <bit>
 #include <cmath>
-#include <exception>
 #include <limits>
-#include <memory>
 #include <optional>
 #include <stdexcept>
-#include <thread>
 
 #include "certified_orientation.hpp"
+#include "coarse_cells.hpp"
+#include "face_grid.hpp"
+#include "region_certificate.hpp"
 
 namespace tumble::engine::detail {
 namespace {
 
 using Face = std::array<std::uint32_t, 3>;
 
-constexpr int kPartitionBits = 8;
-constexpr std::size_t kPartitions = std::size_t{1} << kPartitionBits;
-constexpr int kBlockShift = 4;    // a partition holds whole blocks of 16^3 cells
-constexpr int kCornerShift = 29;  // an entry's face and corner bits: face | corner << 29
-constexpr std::uint32_t kFaceMask = (std::uint32_t{1} << kCornerShift) - 1;
-constexpr double kCellLimit = 0x1p30;  // cell coordinates are clamped to +-2^30
-constexpr int kLevels = 250;           // cell sizes c, 2c, ..., 2^249 c
-constexpr std::uint8_t kWide = 254;    // a face spanning more than two cells on every level
-constexpr std::uint8_t kNoLevel = 255;  // a collinear face: in no cell
-constexpr double kCellsPerExtent = 2.0;  // cell size over the sampled median extent
-constexpr std::size_t kEntriesPerBucket = 4;
+constexpr double kFineCellsPerExtent = 2.0;     // fine cell size over the median face extent
+constexpr double kCoarseCellsPerExtent = 16.0;  // coarse cell size over it
 
 /// The next float below (above) a finite or infinite float, toward -inf (+inf).
 float float_before(float f) {
@@ -75,112 +54,24 @@ float float_up(double x) {
   return static_cast<double>(f) >= x ? f : float_after(f);
 }
 
-struct Cell {
-  std::int32_t level, x, y, z;
-  auto operator<=>(const Cell&) const = default;
-};
-
-/// A 32-bit hash of a cell (multiply-xorshift rounds).
-std::uint32_t cell_hash(std::int32_t level, std::int32_t x, std::int32_t y, std::int32_t z) {
-  const auto u = [](std::int32_t v) { return static_cast<std::uint64_t>(static_cast<std::uint32_t>(v)); };
-  std::uint64_t h = (u(x) << 32 | u(y)) ^ ((u(z) << 8 | u(level)) * 0x9e3779b97f4a7c15ull);
-  h ^= h >> 32;
-  h *= 0xd6e8feb86659fd93ull;
-  h ^= h >> 32;
-  h *= 0xd6e8feb86659fd93ull;
-  h ^= h >> 32;
-  return static_cast<std::uint32_t>(h);
-}
-
-std::uint32_t cell_hash(const Cell& c) {
-  return cell_hash(c.level, c.x, c.y, c.z);
-}
-
-/// The partition of a cell: that of its block of 16^3 cells.
-std::size_t partition_of(const Cell& c) {
-  return cell_hash(c.level, c.x >> kBlockShift, c.y >> kBlockShift, c.z >> kBlockShift) >>
-         (32 - kPartitionBits);
-}
-
-/// The cell coordinate of `v` where cells are 1 / inverse wide: monotone in v.
-std::int32_t to_cell(float v, double inverse) {
-  const double scaled = std::floor(static_cast<double>(v) * inverse);
-  return static_cast<std::int32_t>(std::clamp(scaled, -kCellLimit, kCellLimit));
-}
-
-/// The cells a box touches on one level: [low, high] along each axis.
-struct CellRange {
-  std::array<std::int32_t, 3> low, high;
-};
-
-CellRange cell_range(const FloatBox& box, double inverse) {
-  CellRange range;
-  for (int axis = 0; axis < 3; ++axis) {
-    range.low[axis] = to_cell(box.lo[axis], inverse);
-    range.high[axis] = to_cell(box.hi[axis], inverse);
-  }
-  return range;
-}
-
-bool spans_at_most_two(const CellRange& range) {
-  return range.high[0] - range.low[0] <= 1 && range.high[1] - range.low[1] <= 1 &&
-         range.high[2] - range.low[2] <= 1;
-}
-
-bool boxes_overlap(const FloatBox& a, const FloatBox& b) {
-  return a.lo[0] <= b.hi[0] && b.lo[0] <= a.hi[0] && a.lo[1] <= b.hi[1] && b.lo[1] <= a.hi[1] &&
-         a.lo[2] <= b.hi[2] && b.lo[2] <= a.hi[2];
-}
-
-/// An entry of the grid: a face in one of its cells.
-struct Entry {
-  std::uint32_t hash;         ///< of the cell
-  std::uint32_t face_corner;  ///< face | corner << kCornerShift
-};
-
-/// An entry of one bucket, with its cell and box at hand.
-struct Item {
-  Cell cell;
+FloatBox box_of(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
   FloatBox box;
-  std::uint32_t face;
-  std::uint32_t corner;  ///< bit a: the cell is one past the face's lowest cell along axis a
-};
+  for (int axis = 0; axis < 3; ++axis) {
+    box.lo[axis] = float_down(std::min({a[axis], b[axis], c[axis]}));
+    box.hi[axis] = float_up(std::max({a[axis], b[axis], c[axis]}));
+  }
+  return box;
+}
+
+/// What the filter can tell: certainly not, certainly, or not at all.
+enum class Filtered { kNo, kYes, kUnknown };
 
 /// One thread's counts and scratch memory.
 struct Tally {
   std::vector<PartPairCounts> parts;
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> meeting;
-  std::size_t candidates = 0, deferred = 0, deferred_faces = 0;
-  std::array<std::size_t, kPartitions> partition_entries{};
-  std::array<bool, kLevels> levels{};
-  std::vector<std::uint32_t> wide;
-  std::vector<Entry> scratch;
-  std::vector<std::uint32_t> cursor;
-  std::vector<Item> items;
+  std::size_t candidates = 0, deferred = 0, deferred_faces = 0, regions = 0, certified = 0;
 };
-
-/// What the filter can tell: certainly not, certainly, or not at all.
-enum class Filtered { kNo, kYes, kUnknown };
-
-/// Runs work(thread) on `threads` threads (this one is thread 0), rethrowing the first error.
-template <typename Work>
-void on_threads(unsigned threads, const Work& work) {
-  std::vector<std::exception_ptr> errors(threads);
-  const auto guarded = [&](unsigned thread) {
-    try {
-      work(thread);
-    } catch (...) {
-      errors[thread] = std::current_exception();
-    }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned thread = 1; thread < threads; ++thread) pool.emplace_back(guarded, thread);
-  guarded(0);
-  for (std::thread& thread : pool) thread.join();
-  for (const std::exception_ptr& error : errors) {
-    if (error) std::rethrow_exception(error);
-  }
-}
 
 class PairSearch {
  public:
@@ -189,21 +80,18 @@ class PairSearch {
   FacePairs run();
 
  private:
+  friend class PairVisitor;
+
   std::pair<std::size_t, std::size_t> slice(unsigned thread) const {
     const std::size_t n = faces_.size();
     return {n * thread / threads_, n * (thread + 1) / threads_};
   }
-  void choose_cell_size();
   void prepare(unsigned thread);
-  void prepare_face(std::uint32_t t, Tally& tally);
-  void place_face(std::uint32_t t, Tally& tally);
-  void lay_out();
-  void scatter(unsigned thread);
-  void sort_partition(std::size_t partition, Tally& tally);
-  void pair_bucket(const Entry* begin, const Entry* end, Tally& tally) const;
-  void cross_levels(unsigned thread);
-  void look_up(std::uint32_t t, std::int32_t level, Tally& tally) const;
-  void wide_faces(unsigned thread);
+  double median_extent() const;
+  void certify_regions(double cell);
+  void find_pairs(double cell);
+  void cross_levels(const FaceGrid& grid, unsigned thread);
+  bool belongs_to_uncertified(std::uint32_t t, std::uint32_t u) const;
   void judge(std::uint32_t t, std::uint32_t u, Tally& tally) const;
   std::optional<PairVerdict> filtered(std::uint32_t t, std::uint32_t u) const;
   Filtered straddle(const Face& a, unsigned skip, std::uint32_t plane_face) const;
@@ -213,9 +101,7 @@ class PairSearch {
   bool one_side(std::uint32_t corners_face, std::uint32_t plane_face) const;
   FacePairs total();
 
-  double inverse(std::int32_t level) const { return inverses_[static_cast<std::size_t>(level)]; }
-  Cell cell_of(const Entry& entry) const;
-
+  const TriangleMesh& mesh_;
   const std::vector<Eigen::Vector3d>& positions_;
   const std::vector<Face>& faces_;
   const std::vector<std::uint32_t>& part_;
@@ -223,27 +109,22 @@ class PairSearch {
   const ExactFaceTests& exact_;
   const FacePairOptions options_;
   const unsigned threads_;
-  double inverse_cell_ = 1.0;  ///< 1 / c, level 0
-  std::array<double, kLevels> inverses_{};  ///< 1 / (2^level c)
-  std::vector<FacePlane> planes_;
   std::vector<FloatBox> boxes_;
-  std::vector<std::uint8_t> level_;
+  std::vector<FacePlane> planes_;
   std::vector<std::uint8_t> in_range_;  ///< 1 when the filter may judge the face
   std::vector<std::uint8_t> collinear_;
+  std::vector<std::uint8_t> active_;  ///< 1: judged in the fine grid
   std::vector<Tally> tallies_;
-  std::vector<std::int32_t> levels_;  ///< the levels holding faces, ascending
-  std::vector<std::uint32_t> wide_;
-  std::unique_ptr<Entry[]> entries_;
-  std::array<std::size_t, kPartitions + 1> partition_start_{};
-  std::array<std::size_t, kPartitions + 1> first_bucket_{};
-  std::vector<std::uint32_t> bucket_start_;  ///< per partition: its buckets' starts, then its end
-  std::vector<std::array<std::size_t, kPartitions>> cursors_;  ///< per thread, for scatter
+  std::optional<CoarseCells> coarse_;
+  bool certifying_ = false;
+  std::vector<std::uint8_t> uncertified_;  ///< per coarse cell
 };
 
 PairSearch::PairSearch(const TriangleMesh& mesh, const std::vector<std::uint32_t>& triangle_part,
                        std::size_t parts, const ExactFaceTests& exact,
                        const FacePairOptions& options)
-    : positions_(mesh.positions),
+    : mesh_(mesh),
+      positions_(mesh.positions),
       faces_(mesh.triangles),
       part_(triangle_part),
       parts_(parts),
@@ -251,16 +132,38 @@ PairSearch::PairSearch(const TriangleMesh& mesh, const std::vector<std::uint32_t
       options_(options),
       // Small meshes on one thread: starting threads would cost more than it saves.
       threads_(static_cast<unsigned>(std::clamp<std::size_t>(mesh.triangles.size() / 8192, 1,
-                                                              std::max(1u, options.threads)))) {
-  if (faces_.size() > kFaceMask) {
-    throw std::length_error("find_face_pairs: more than 2^29 - 1 faces");
-  }
+                                                             std::max(1u, options.threads)))) {
   tallies_.resize(threads_);
   for (Tally& tally : tallies_) tally.parts.resize(parts_);
 }
 
-/// The level-0 cell: twice the median extent of up to 1024 faces spread over the mesh.
-void PairSearch::choose_cell_size() {
+/// An active face's box, plane and collinearity, and whether the filter may judge it (the
+/// faces of certified regions are not collinear: they project with non-zero area).
+void PairSearch::prepare(unsigned thread) {
+  const auto [first, last] = slice(thread);
+  Tally& tally = tallies_[thread];
+  for (std::size_t t = first; t < last; ++t) {
+    if (active_[t] == 0) continue;
+    const Face& f = faces_[t];
+    const Eigen::Vector3d &o = positions_[f[0]], &a = positions_[f[1]], &b = positions_[f[2]];
+    bool in_range = true;
+    for (const Eigen::Vector3d* p : {&o, &a, &b}) {
+      in_range &= in_filter_range(p->x()) && in_filter_range(p->y()) && in_filter_range(p->z());
+    }
+    in_range_[t] = in_range ? 1 : 0;
+    bool not_collinear = false;
+    planes_[t] = face_plane(o, a, b, not_collinear);
+    if (!(options_.filter && in_range && not_collinear)) {
+      ++tally.deferred_faces;
+      not_collinear = !exact_.collinear(static_cast<std::uint32_t>(t));
+    }
+    collinear_[t] = not_collinear ? 0 : 1;
+    boxes_[t] = box_of(o, a, b);
+  }
+}
+
+/// The median extent of up to 1024 faces spread over the mesh (1 when there are none).
+double PairSearch::median_extent() const {
   std::vector<double> extents;
   const std::size_t n = faces_.size(), samples = std::min<std::size_t>(n, 1024);
   for (std::size_t i = 0; i < samples; ++i) {
@@ -271,263 +174,120 @@ void PairSearch::choose_cell_size() {
     const double extent = (high - low).maxCoeff();
     if (std::isfinite(extent) && extent > 0.0) extents.push_back(extent);
   }
-  double cell = 1.0;
-  if (!extents.empty()) {
-    const auto middle = extents.begin() + static_cast<std::ptrdiff_t>(extents.size() / 2);
-    std::nth_element(extents.begin(), middle, extents.end());
-    cell = kCellsPerExtent * *middle;
-  }
-  inverse_cell_ = 1.0 / cell;
-  if (!std::isfinite(inverse_cell_) || inverse_cell_ <= 0.0) inverse_cell_ = 1.0;
-  for (int level = 0; level < kLevels; ++level) {
-    inverses_[static_cast<std::size_t>(level)] = std::ldexp(inverse_cell_, -level);
-  }
+  if (extents.empty()) return 1.0;
+  const auto middle = extents.begin() + static_cast<std::ptrdiff_t>(extents.size() / 2);
+  std::nth_element(extents.begin(), middle, extents.end());
+  return *middle;
 }
 
-FloatBox box_of(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-  FloatBox box;
-  for (int axis = 0; axis < 3; ++axis) {
-    box.lo[axis] = float_down(std::min({a[axis], b[axis], c[axis]}));
-    box.hi[axis] = float_up(std::max({a[axis], b[axis], c[axis]}));
-  }
-  return box;
-}
-
-/// A face's plane, box, collinearity and level, and its entries counted per partition.
-void PairSearch::prepare_face(std::uint32_t t, Tally& tally) {
-  const Face& f = faces_[t];
-  const Eigen::Vector3d &o = positions_[f[0]], &a = positions_[f[1]], &b = positions_[f[2]];
-  bool not_collinear = false;
-  planes_[t] = face_plane(o, a, b, not_collinear);
-  bool in_range = true;
-  for (const Eigen::Vector3d* p : {&o, &a, &b}) {
-    in_range &= in_filter_range(p->x()) && in_filter_range(p->y()) && in_filter_range(p->z());
-  }
-  in_range_[t] = in_range ? 1 : 0;
-  if (!(options_.filter && in_range && not_collinear)) {
-    ++tally.deferred_faces;
-    not_collinear = !exact_.collinear(t);
-  }
-  collinear_[t] = not_collinear ? 0 : 1;
-  if (!not_collinear) {
-    level_[t] = kNoLevel;
-    return;
-  }
-  boxes_[t] = box_of(o, a, b);
-  place_face(t, tally);
-}
-
-/// The coarsest needed level: the first on which the face's box spans at most two cells along
-/// each axis (the extent over the cell size gives it but for rounding, checked here).
-void PairSearch::place_face(std::uint32_t t, Tally& tally) {
-  const FloatBox& box = boxes_[t];
-  const double extent = std::max({static_cast<double>(box.hi[0]) - box.lo[0],
-                                  static_cast<double>(box.hi[1]) - box.lo[1],
-                                  static_cast<double>(box.hi[2]) - box.lo[2]});
-  const double cells = extent * inverse_cell_;
-  int level = kLevels;
-  if (cells <= 1.0) {
-    level = 0;
-  } else if (cells < 0x1p200) {
-    level = std::ilogb(cells) + 1;
-  }
-  CellRange range;
-  for (; level < kLevels; ++level) {
-    range = cell_range(box, inverse(level));
-    if (spans_at_most_two(range)) break;
-  }
-  if (level >= kLevels) {
-    level_[t] = kWide;
-    tally.wide.push_back(t);
-    return;
-  }
-  level_[t] = static_cast<std::uint8_t>(level);
-  tally.levels[static_cast<std::size_t>(level)] = true;
-  for (std::int32_t x = range.low[0]; x <= range.high[0]; ++x) {
-    for (std::int32_t y = range.low[1]; y <= range.high[1]; ++y) {
-      for (std::int32_t z = range.low[2]; z <= range.high[2]; ++z) {
-        ++tally.partition_entries[partition_of({level, x, y, z})];
+/// Certifies each coarse cell's faces; marks the faces of the others for the fine grid.
+void PairSearch::certify_regions(double cell) {
+  coarse_.emplace(mesh_, cell, threads_);
+  if (!coarse_->usable()) return;
+  uncertified_.assign(coarse_->size(), 0);
+  std::atomic<std::size_t> next{0};
+  on_threads(threads_, [&](unsigned thread) {
+    RegionCertificate certificate(mesh_, *coarse_);
+    Tally& tally = tallies_[thread];
+    for (std::size_t i; (i = next.fetch_add(1, std::memory_order_relaxed)) < coarse_->size();) {
+      ++tally.regions;
+      if (certificate.certify(coarse_->faces(i), coarse_->coordinates(i))) {
+        ++tally.certified;
+        continue;
+      }
+      uncertified_[i] = 1;
+      for (const std::uint32_t f : coarse_->faces(i)) {
+        std::atomic_ref<std::uint8_t>(active_[f]).store(1, std::memory_order_relaxed);
       }
     }
-  }
+  });
+  certifying_ = true;
 }
 
-void PairSearch::prepare(unsigned thread) {
-  const auto [first, last] = slice(thread);
-  Tally& tally = tallies_[thread];
-  for (std::size_t t = first; t < last; ++t) prepare_face(static_cast<std::uint32_t>(t), tally);
+/// Whether a pair of faces whose boxes overlap belongs to a coarse cell that is not certified.
+bool PairSearch::belongs_to_uncertified(std::uint32_t t, std::uint32_t u) const {
+  if (!certifying_) return true;
+  const std::optional<std::size_t> cell = coarse_->find(coarse_->pair_cell(t, u));
+  return !cell || uncertified_[*cell] != 0;
 }
 
-/// Where each thread writes each partition's entries, and the partitions' buckets.
-void PairSearch::lay_out() {
-  cursors_.resize(threads_);
-  std::size_t offset = 0;
-  for (std::size_t p = 0; p < kPartitions; ++p) {
-    partition_start_[p] = offset;
-    for (unsigned thread = 0; thread < threads_; ++thread) {
-      cursors_[thread][p] = offset;
-      offset += tallies_[thread].partition_entries[p];
-    }
-  }
-  partition_start_[kPartitions] = offset;
-  if (offset >= std::numeric_limits<std::uint32_t>::max()) {
-    throw std::length_error("find_face_pairs: more than 2^32 - 1 grid entries");
-  }
-  entries_ = std::make_unique_for_overwrite<Entry[]>(offset);
-  std::size_t buckets = 0;
-  for (std::size_t p = 0; p < kPartitions; ++p) {
-    first_bucket_[p] = buckets;
-    const std::size_t count = partition_start_[p + 1] - partition_start_[p];
-    buckets += std::bit_ceil(std::max<std::size_t>(1, count / kEntriesPerBucket)) + 1;
-  }
-  first_bucket_[kPartitions] = buckets;
-  bucket_start_.resize(buckets);
-  for (const Tally& tally : tallies_) {
-    for (std::size_t level = 0; level < kLevels; ++level) {
-      if (tally.levels[level]) levels_.push_back(static_cast<std::int32_t>(level));
-    }
-    wide_.insert(wide_.end(), tally.wide.begin(), tally.wide.end());
-  }
-  std::sort(levels_.begin(), levels_.end());
-  levels_.erase(std::unique(levels_.begin(), levels_.end()), levels_.end());
-  std::sort(wide_.begin(), wide_.end());
-}
-
-void PairSearch::scatter(unsigned thread) {
-  const auto [first, last] = slice(thread);
-  std::array<std::size_t, kPartitions>& cursor = cursors_[thread];
-  Entry* const entries = entries_.get();
-  for (std::size_t t = first; t < last; ++t) {
-    const std::int32_t level = level_[t];
-    if (level >= kWide) continue;
-    const CellRange range = cell_range(boxes_[t], inverse(level));
-    for (std::int32_t x = range.low[0]; x <= range.high[0]; ++x) {
-      for (std::int32_t y = range.low[1]; y <= range.high[1]; ++y) {
-        for (std::int32_t z = range.low[2]; z <= range.high[2]; ++z) {
-          const Cell cell{level, x, y, z};
-          const auto corner = static_cast<std::uint32_t>((x - range.low[0]) |
-                                                         (y - range.low[1]) << 1 |
-                                                         (z - range.low[2]) << 2);
-          entries[cursor[partition_of(cell)]++] = {
-              cell_hash(cell), static_cast<std::uint32_t>(t) | corner << kCornerShift};
+/// Judges the pairs of faces of one fine cell that belong to it.
+class PairVisitor final : public CellVisitor {
+ public:
+  explicit PairVisitor(const PairSearch& search) : search_(search) {}
+  void visit(unsigned thread, std::span<const GridItem> items) override {
+    Tally& tally = const_cast<Tally&>(search_.tallies_[thread]);
+    for (std::size_t i = 0; i < items.size(); ++i) {
+      for (std::size_t j = i + 1; j < items.size(); ++j) {
+        if (!owns_pair(items[i], items[j]) || !boxes_overlap(items[i].box, items[j].box)) continue;
+        if (search_.belongs_to_uncertified(items[i].face, items[j].face)) {
+          search_.judge(items[i].face, items[j].face, tally);
         }
       }
     }
   }
-}
 
-Cell PairSearch::cell_of(const Entry& entry) const {
-  const std::uint32_t face = entry.face_corner & kFaceMask;
-  const std::uint32_t corner = entry.face_corner >> kCornerShift;
-  const std::int32_t level = level_[face];
-  const double scale = inverse(level);
-  const FloatBox& box = boxes_[face];
-  return {level, to_cell(box.lo[0], scale) + static_cast<std::int32_t>(corner & 1u),
-          to_cell(box.lo[1], scale) + static_cast<std::int32_t>(corner >> 1 & 1u),
-          to_cell(box.lo[2], scale) + static_cast<std::int32_t>(corner >> 2 & 1u)};
-}
+ private:
+  const PairSearch& search_;
+};
 
-/// Sorts a partition's entries into buckets by cell hash, then judges each bucket's pairs.
-void PairSearch::sort_partition(std::size_t p, Tally& tally) {
-  const std::size_t begin = partition_start_[p], count = partition_start_[p + 1] - begin;
-  const std::size_t buckets = first_bucket_[p + 1] - first_bucket_[p] - 1;
-  std::uint32_t* const start = bucket_start_.data() + first_bucket_[p];
-  Entry* const entries = entries_.get() + begin;
-  std::fill(start, start + buckets + 1, 0u);
-  const std::uint32_t mask = static_cast<std::uint32_t>(buckets - 1);
-  for (std::size_t i = 0; i < count; ++i) ++start[(entries[i].hash & mask) + 1];
-  for (std::size_t b = 0; b < buckets; ++b) start[b + 1] += start[b];
-  tally.cursor.assign(start, start + buckets);
-  tally.scratch.resize(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    tally.scratch[tally.cursor[entries[i].hash & mask]++] = entries[i];
-  }
-  std::copy(tally.scratch.begin(), tally.scratch.begin() + static_cast<std::ptrdiff_t>(count),
-            entries);
-  for (std::size_t b = 0; b < buckets; ++b) {
-    if (start[b + 1] - start[b] >= 2) pair_bucket(entries + start[b], entries + start[b + 1], tally);
-  }
-  for (std::size_t b = 0; b <= buckets; ++b) start[b] += static_cast<std::uint32_t>(begin);
-}
-
-/// Judges the pairs of faces that share a cell of this bucket and belong to it.
-void PairSearch::pair_bucket(const Entry* begin, const Entry* end, Tally& tally) const {
-  std::vector<Item>& items = tally.items;
-  items.clear();
-  bool one_cell = true;
-  for (const Entry* e = begin; e != end; ++e) {
-    const std::uint32_t face = e->face_corner & kFaceMask;
-    items.push_back({cell_of(*e), boxes_[face], face, e->face_corner >> kCornerShift});
-    one_cell &= items.back().cell == items.front().cell;
-  }
-  if (!one_cell) {
-    std::sort(items.begin(), items.end(),
-              [](const Item& a, const Item& b) { return a.cell < b.cell; });
-  }
-  for (std::size_t run = 0; run < items.size();) {
-    std::size_t run_end = run + 1;
-    while (run_end < items.size() && items[run_end].cell == items[run].cell) ++run_end;
-    for (std::size_t i = run; i < run_end; ++i) {
-      for (std::size_t j = i + 1; j < run_end; ++j) {
-        if ((items[i].corner & items[j].corner) != 0) continue;
-        if (boxes_overlap(items[i].box, items[j].box)) judge(items[i].face, items[j].face, tally);
-      }
-    }
-    run = run_end;
-  }
-}
-
-/// Faces on a finer level than others: each looks itself up on every coarser level.
-void PairSearch::cross_levels(unsigned thread) {
-  const auto [first, last] = slice(thread);
-  Tally& tally = tallies_[thread];
-  for (std::size_t t = first; t < last; ++t) {
-    if (level_[t] >= kWide) continue;
-    for (const std::int32_t level : levels_) {
-      if (level > level_[t]) look_up(static_cast<std::uint32_t>(t), level, tally);
-    }
-  }
-}
-
-/// Judges face t against the faces of `level` in the cells its box touches there: a pair
+/// Faces on a finer level than others look themselves up on every coarser level; a pair
 /// belongs to the cell of the low corner of the boxes' intersection.
-void PairSearch::look_up(std::uint32_t t, std::int32_t level, Tally& tally) const {
-  const FloatBox& box = boxes_[t];
-  const CellRange range = cell_range(box, inverse(level));
-  for (std::int32_t x = range.low[0]; x <= range.high[0]; ++x) {
-    for (std::int32_t y = range.low[1]; y <= range.high[1]; ++y) {
-      for (std::int32_t z = range.low[2]; z <= range.high[2]; ++z) {
-        const Cell cell{level, x, y, z};
-        const std::size_t p = partition_of(cell);
-        const std::size_t buckets = first_bucket_[p + 1] - first_bucket_[p] - 1;
-        const std::uint32_t* start =
-            bucket_start_.data() + first_bucket_[p] + (cell_hash(cell) & (buckets - 1));
-        for (std::uint32_t e = start[0]; e < start[1]; ++e) {
-          const Entry& entry = entries_[e];
-          const std::uint32_t u = entry.face_corner & kFaceMask;
-          const std::uint32_t corner = entry.face_corner >> kCornerShift;
-          if (level_[u] != level || !(cell_of(entry) == cell)) continue;
-          // The low corner of the intersection is in this cell along each axis.
-          const bool owns = (x == range.low[0] || (corner & 1u) == 0) &&
-                            (y == range.low[1] || (corner & 2u) == 0) &&
-                            (z == range.low[2] || (corner & 4u) == 0);
-          if (owns && boxes_overlap(box, boxes_[u])) judge(t, u, tally);
+void PairSearch::cross_levels(const FaceGrid& grid, unsigned thread) {
+  const auto [first, last] = slice(thread);
+  Tally& tally = tallies_[thread];
+  for (std::size_t f = first; f < last; ++f) {
+    const auto t = static_cast<std::uint32_t>(f);
+    if (!grid.placed(t)) continue;
+    const FloatBox& box = boxes_[t];
+    for (const std::int32_t level : grid.levels()) {
+      if (level <= grid.level(t)) continue;
+      const CellRange range = grid.cells(box, level);
+      for (std::int32_t x = range.low[0]; x <= range.high[0]; ++x) {
+        for (std::int32_t y = range.low[1]; y <= range.high[1]; ++y) {
+          for (std::int32_t z = range.low[2]; z <= range.high[2]; ++z) {
+            grid.for_each_in({level, x, y, z}, [&](std::uint32_t u, std::uint32_t corner) {
+              const bool owns = (x == range.low[0] || (corner & 1u) == 0) &&
+                                (y == range.low[1] || (corner & 2u) == 0) &&
+                                (z == range.low[2] || (corner & 4u) == 0);
+              if (owns && boxes_overlap(box, boxes_[u]) && belongs_to_uncertified(t, u)) {
+                judge(t, u, tally);
+              }
+            });
+          }
         }
       }
     }
   }
 }
 
-/// Faces too large for every level (coordinates near the float range): against every face.
-void PairSearch::wide_faces(unsigned thread) {
-  Tally& tally = tallies_[thread];
-  for (std::size_t w = thread; w < wide_.size(); w += threads_) {
-    const std::uint32_t t = wide_[w];
-    for (std::uint32_t u = 0; u < faces_.size(); ++u) {
-      if (u == t || level_[u] == kNoLevel || (level_[u] == kWide && u < t)) continue;
-      if (boxes_overlap(boxes_[t], boxes_[u])) judge(t, u, tally);
-    }
+/// The pairs of the faces not covered by certificates, from the fine grid.
+void PairSearch::find_pairs(double cell) {
+  std::vector<std::uint8_t> include(faces_.size());
+  for (std::size_t t = 0; t < faces_.size(); ++t) {
+    include[t] = active_[t] != 0 && collinear_[t] == 0 ? 1 : 0;
   }
+  FaceGrid grid(boxes_, include, 1.0 / cell, FaceGrid::kMaxLevels, threads_);
+  PairVisitor visitor(*this);
+  grid.visit(visitor);
+  if (grid.levels().size() > 1) {
+    on_threads(threads_, [&](unsigned thread) { cross_levels(grid, thread); });
+  }
+  // Faces spanning more than two cells on every level (coordinates near the float range):
+  // against every other face in the grid.
+  const std::vector<std::uint32_t>& oversized = grid.oversized();
+  on_threads(threads_, [&](unsigned thread) {
+    Tally& tally = tallies_[thread];
+    for (std::size_t w = thread; w < oversized.size(); w += threads_) {
+      const std::uint32_t t = oversized[w];
+      for (std::uint32_t u = 0; u < faces_.size(); ++u) {
+        if (include[u] == 0 || u == t || (!grid.placed(u) && u < t)) continue;
+        if (boxes_overlap(boxes_[t], boxes_[u]) && belongs_to_uncertified(t, u)) {
+          judge(t, u, tally);
+        }
+      }
+    }
+  });
 }
 
 /// Whether the corners of `a` outside the mask `skip` lie on both sides of the plane of
@@ -681,6 +441,8 @@ FacePairs PairSearch::total() {
     out.candidates += tally.candidates;
     out.deferred += tally.deferred;
     out.deferred_faces += tally.deferred_faces;
+    out.regions += tally.regions;
+    out.certified += tally.certified;
   }
   out.collinear = std::move(collinear_);
   return out;
@@ -688,21 +450,16 @@ FacePairs PairSearch::total() {
 
 FacePairs PairSearch::run() {
   const std::size_t n = faces_.size();
-  planes_.resize(n);
   boxes_.resize(n);
-  level_.resize(n);
+  planes_.resize(n);
   in_range_.resize(n);
-  collinear_.resize(n);
-  choose_cell_size();
+  collinear_.assign(n, 0);
+  active_.assign(n, 0);
+  const double extent = median_extent();
+  if (options_.certify) certify_regions(kCoarseCellsPerExtent * extent);
+  if (!certifying_) std::fill(active_.begin(), active_.end(), std::uint8_t{1});
   on_threads(threads_, [this](unsigned thread) { prepare(thread); });
-  lay_out();
-  on_threads(threads_, [this](unsigned thread) { scatter(thread); });
-  std::atomic<std::size_t> next{0};
-  on_threads(threads_, [&](unsigned thread) {
-    for (std::size_t p; (p = next.fetch_add(1)) < kPartitions;) sort_partition(p, tallies_[thread]);
-  });
-  if (levels_.size() > 1) on_threads(threads_, [this](unsigned thread) { cross_levels(thread); });
-  if (!wide_.empty()) on_threads(threads_, [this](unsigned thread) { wide_faces(thread); });
+  find_pairs(kFineCellsPerExtent * extent);
   return total();
 }
 
@@ -716,6 +473,9 @@ FloatBox face_box(const TriangleMesh& mesh, std::uint32_t t) {
 FacePairs find_face_pairs(const TriangleMesh& mesh, const std::vector<std::uint32_t>& triangle_part,
                           std::size_t parts, const ExactFaceTests& exact,
                           const FacePairOptions& options) {
+  if (mesh.triangles.size() >= (std::size_t{1} << 29)) {
+    throw std::length_error("find_face_pairs: more than 2^29 - 1 faces");
+  }
   return PairSearch(mesh, triangle_part, parts, exact, options).run();
 }
 

@@ -2,12 +2,15 @@
 // The face pairs of part_overlap.cpp's first pass: every pair of faces whose boxes overlap,
 // judged as part_overlap.cpp's exact tests would judge it, in a fraction of their time.
 //
-// Candidates come from a grid over the faces' boxes (face_pairs.cpp); neighbours are told
+// First, the faces touching each cell of a coarse grid (16 times the faces' median extent) are
+// certified as a whole where they can be: no two of them meet beyond what they share
+// (region_certificate.hpp), so every pair of them is apart. Then the pairs the certificates do
+// not cover come from a fine grid over the faces' boxes (face_grid.hpp); neighbours are told
 // apart by the welded vertex indices they share (faces sharing an edge are never tested, the
 // same face twice is a repeat or a mirror image by its vertex order alone); the rest are
 // decided by orientation signs with a certified error bound (certified_orientation.hpp)
 // wherever those decide them. Only the pairs the filter cannot decide (faces that touch, lie
-// in one plane, cross, or whose coordinates lie outside the filter's range) go to the exact
+// in one plane, or whose coordinates lie outside the filter's range) go to the exact
 // predicates, through ExactFaceTests. So the verdicts are exactly those of the exact tests.
 
 #include <cstddef>
@@ -51,9 +54,11 @@ struct FacePairs {
   /// Per pair of parts (i < j) whose faces meet: how many pairs of faces meet.
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> meeting;
   std::vector<std::uint8_t> collinear;  ///< per face: 1 when its corners are collinear
-  std::size_t candidates = 0;           ///< pairs of non-collinear faces whose boxes overlap
+  std::size_t candidates = 0;           ///< pairs judged one by one (not within a certified region)
   std::size_t deferred = 0;             ///< of those, the pairs judged by the exact predicates
   std::size_t deferred_faces = 0;       ///< faces whose collinearity they decided
+  std::size_t regions = 0;              ///< coarse cells holding faces
+  std::size_t certified = 0;            ///< of them, those whose faces are certified apart
 };
 
 /// A face's box in floats, rounded outward: it contains the face.
@@ -64,6 +69,8 @@ FloatBox face_box(const TriangleMesh& mesh, std::uint32_t t);
 
 struct FacePairOptions {
   unsigned threads = 1;
+  /// Certify coarse cells' faces as a whole (region_certificate.hpp) before judging pairs.
+  bool certify = true;
   /// false: every face and pair goes to the exact predicates (for tests and benchmarks).
   bool filter = true;
 };

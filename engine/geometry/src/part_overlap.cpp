@@ -140,7 +140,8 @@ bool Analysis::straddles(const Face& a, const Face& b) const {
   bool positive = false, negative = false;
   for (const std::uint32_t v : a) {
     if (v == b[0] || v == b[1] || v == b[2]) continue;
-    const CGAL::Orientation side = CGAL::orientation(point(b[0]), point(b[1]), point(b[2]), point(v));
+    const CGAL::Orientation side =
+        CGAL::orientation(point(b[0]), point(b[1]), point(b[2]), point(v));
     positive |= side == CGAL::POSITIVE;
     negative |= side == CGAL::NEGATIVE;
   }
@@ -183,8 +184,7 @@ PairVerdict Analysis::judge_same_part(std::uint32_t t, std::uint32_t u) const {
 PairVerdict Analysis::judge(std::uint32_t t, std::uint32_t u) const {
   if (triangle_part_[t] == triangle_part_[u]) return judge_same_part(t, u);
   // Parts share no vertex: a plain triangle test.
-  return CGAL::do_intersect(triangle(t), triangle(u)) ? PairVerdict::kMeeting
-                                                      : PairVerdict::kApart;
+  return CGAL::do_intersect(triangle(t), triangle(u)) ? PairVerdict::kMeeting : PairVerdict::kApart;
 }
 
 /// Pass 1 by the reference method: CGAL's box intersection, every pair judged exactly.
@@ -394,12 +394,15 @@ PartOverlaps Analysis::run(const OverlapOptions& options) {
   PartOverlaps out;
   bool found = false;
   if (options.face_pairs) {
+    FacePairOptions search;
+    search.threads = std::max(1u, options.threads);
+    search.certify = options.method == FacePairMethod::kCertified;
+    search.filter = options.method != FacePairMethod::kExact;
     FacePairs pairs = options.method == FacePairMethod::kReference
                           ? reference_pairs()
-                          : find_face_pairs(mesh_, triangle_part_, parts_.size(), *this,
-                                            {std::max(1u, options.threads),
-                                             options.method == FacePairMethod::kFiltered});
-    out.stats = {pairs.candidates, pairs.deferred, pairs.deferred_faces};
+                          : find_face_pairs(mesh_, triangle_part_, parts_.size(), *this, search);
+    out.stats = {pairs.candidates, pairs.deferred, pairs.deferred_faces, pairs.regions,
+                 pairs.certified};
     for (std::size_t i = 0; i < parts_.size(); ++i) {
       parts_[i].repeated = pairs.parts[i].repeated;
       parts_[i].mirrored = pairs.parts[i].mirrored;
@@ -443,8 +446,8 @@ PartOverlaps Analysis::run(const OverlapOptions& options) {
 }  // namespace
 
 PartOverlaps find_part_overlaps(const TriangleMesh& mesh,
-                                const std::vector<std::uint32_t>& triangle_part,
-                                std::size_t parts, const OverlapOptions& options) {
+                                const std::vector<std::uint32_t>& triangle_part, std::size_t parts,
+                                const OverlapOptions& options) {
   Analysis analysis(mesh, triangle_part, parts);
   return analysis.run(options);
 }

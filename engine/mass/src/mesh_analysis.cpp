@@ -307,7 +307,8 @@ void solid_properties(TriangleMesh& mesh, const Eigen::Vector3d& reference,
   // Exact tests for parts that cross, nest, repeat or intersect themselves: an error unless
   // allowed (overlap_policy.hpp).
   detail::OverlapOptions search;
-  search.threads = options.jobs != 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
+  search.threads =
+      options.jobs != 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
   search.face_pairs = options.check_overlap;
   const detail::PartOverlaps overlaps =
       detail::find_part_overlaps(mesh, pass.topology.triangle_part, pass.topology.parts, search);

@@ -47,8 +47,9 @@ struct PartNesting {
   int winding = 0;  ///< winding number of `outer`'s faces, as wound, around `inner`
 };
 
-/// How the pairs of faces are found and judged. All three give the same verdicts.
+/// How the pairs of faces are found and judged. All give the same verdicts.
 enum class FacePairMethod {
+  kCertified,  ///< regions certified whole, the other pairs as kFiltered (the default)
   kFiltered,   ///< a grid of the faces' boxes; the filter, exact predicates where it cannot tell
   kExact,      ///< the same grid; exact predicates for every pair (tests, benchmarks)
   kReference,  ///< CGAL's box intersection and exact predicates for every pair (tests)
@@ -59,14 +60,16 @@ struct OverlapOptions {
   /// false: no pairs of faces are judged (no self-intersection, repeat or crossing is found);
   /// only the containment of parts in each other, which orients them, is decided.
   bool face_pairs = true;
-  FacePairMethod method = FacePairMethod::kFiltered;
+  FacePairMethod method = FacePairMethod::kCertified;
 };
 
 /// How much work the pairs of faces took (for tests and benchmarks).
 struct FacePairStats {
-  std::size_t candidates = 0;      ///< pairs of non-degenerate faces whose boxes overlap
+  std::size_t candidates = 0;      ///< pairs of faces judged one by one (boxes overlapping)
   std::size_t deferred = 0;        ///< of them, the pairs judged by the exact predicates
   std::size_t deferred_faces = 0;  ///< faces whose degeneracy the exact predicates decided
+  std::size_t regions = 0;         ///< coarse cells holding faces (kCertified)
+  std::size_t certified = 0;       ///< of them, those whose faces were certified apart
 };
 
 struct PartOverlaps {
