@@ -83,7 +83,7 @@ void add_batch_options(CLI::App& inspect, InspectOptions& options) {
   inspect
       .add_option("--jobs", options.jobs,
                   "Files inspected at once (default 1; 0: one per core); output stays in input "
-                  "order")
+                  "order. The cores left over split each file's overlap checks")
       ->check(CLI::NonNegativeNumber);
   inspect.add_option_function<std::string>(
       "-o,--output", [&](const std::string& value) { options.output = value; },
@@ -154,6 +154,8 @@ int inspect(const InspectOptions& given, std::ostream& out, std::ostream& err) {
   InspectPrinter printer(options, file ? buffer : out, err, batch || inputs.size() > 1);
   unsigned jobs = options.jobs;
   if (jobs == 0) jobs = std::max(1u, std::thread::hardware_concurrency());
+  // The cores left by the files inspected at once go to each file's overlap checks.
+  options.mass.jobs = std::max(1u, std::thread::hardware_concurrency() / jobs);
   // Each file's outcome waits in its slot until every file before it is printed.
   std::vector<InspectOutcome> outcomes(items.size());
   std::vector<std::string> digests(shard ? items.size() : 0);
@@ -216,6 +218,10 @@ CLI::App& add_inspect_command(CLI::App& cli, InspectOptions& options) {
   inspect.add_flag("--allow-overlap", options.mass.allow_overlap,
                    "Accept parts that overlap, intersect themselves or repeat (their shared "
                    "volume counts twice; a warning says how much); by default an error");
+  inspect.add_flag_callback(
+      "--skip-overlap-checks", [&options] { options.mass.check_overlap = false; },
+      "Do not test the parts' faces for crossings, self-intersections and repeats (their "
+      "containment in each other is still decided); any there are then count twice unwarned");
   add_output_options(inspect, options);
   add_batch_options(inspect, options);
   return inspect;
