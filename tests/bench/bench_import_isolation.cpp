@@ -1,77 +1,85 @@
-// What running assimp in a child process costs (engine/src/isolated_import.hpp): the fork, the
-// pipe and the copy of the mesh back, without assimp's own work.
+// What reading files through the import worker costs (engine/import/src/import_worker.hpp): the
+// worker is a program of its own (tumble-import), started with posix_spawn on a thread's first
+// file and kept for the next ones; it sends the scene as assimp returned it, and this process
+// welds and places it.
 //
-//   BM_IsolatedRoundTrip/12        a 12-triangle cube back from the child: fork, pipe, reap
-//   BM_IsolatedRoundTrip/1000000   the 1M-triangle torus (500k vertices, 24 MB) back
-//   BM_WorkerRoundTrip/12          the cube back from this thread's persistent import worker
-//                                  (import_worker.hpp): request, answer, no fork
-//   BM_WorkerRoundTrip/1000000     the torus back from the worker
-//   BM_InProcessCopy/1000000       the same mesh copied in one process, for comparison
-// Compare with BM_InspectStlThroughAssimp (bench_mass_properties): assimp reading and tumble
-// inspecting a 1M-triangle file.
+//   BM_FreshWorkerObj/12        a 12-triangle OBJ cube, each read by a newly started worker:
+//                               spawn, exec, assimp's start-up, the read, the answer
+//   BM_WarmWorkerObj/12         the cube again and again through one worker
+//   BM_WarmWorkerObj/200000     a 200,000-triangle OBJ torus through one worker
+//   BM_AssimpInProcess/200000   the same file read by assimp in this process (no walk, no weld)
+// The difference between the last two is what the isolation costs on a large file: the copy
+// of the scene through the memory file and the weld done here.
 #include <benchmark/benchmark.h>
 
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <unistd.h>
+#include <assimp/Importer.hpp>
+#include <filesystem>
+#include <fstream>
 #include <string>
-#include <vector>
 
 #include "engine/geometry/primitive_meshes.hpp"
+#include "engine/import/mesh_import.hpp"
 #include "import_worker.hpp"
-#include "isolated_import.hpp"
 
 namespace {
 
 using namespace tumble;
 
-const engine::TriangleMesh& mesh_of(std::int64_t triangles) {
-  static const engine::TriangleMesh cube = engine::box_mesh(Eigen::Vector3d(1.0, 2.0, 3.0));
-  static const engine::TriangleMesh torus = engine::torus_mesh(1.0, 0.3, 1000, 500);
+/// An OBJ file of a cube (12 triangles) or a torus (`triangles` of them), written once.
+const std::filesystem::path& obj_file(std::int64_t triangles) {
+  static const auto write = [](const engine::TriangleMesh& mesh, const std::string& name) {
+    const std::filesystem::path file =
+        std::filesystem::temp_directory_path() / (name + "-" + std::to_string(::getpid()) + ".obj");
+    std::ofstream out(file);
+    for (const auto& p : mesh.positions)
+      out << "v " << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+    for (const auto& t : mesh.triangles) {
+      out << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
+    }
+    return file;
+  };
+  static const std::filesystem::path cube =
+      write(engine::box_mesh(Eigen::Vector3d(1.0, 2.0, 3.0)), "bench-cube");
+  static const std::filesystem::path torus =
+      write(engine::torus_mesh(1.0, 0.3, 400, 250), "bench-torus");
   return triangles <= 12 ? cube : torus;
 }
 
-void BM_IsolatedRoundTrip(benchmark::State& state) {
-  const engine::TriangleMesh& mesh = mesh_of(state.range(0));
+void BM_FreshWorkerObj(benchmark::State& state) {
+  const std::filesystem::path& file = obj_file(state.range(0));
   for (auto _ : state) {
-    engine::ImportStats stats;
-    const engine::TriangleMesh got = engine::detail::run_isolated(
-        "bench.obj", engine::ImportLimits{10.0, std::uint64_t{4} << 30}, "assimp", stats,
-        [&](engine::ImportStats&) { return mesh; });
-    benchmark::DoNotOptimize(got.triangles.data());
-  }
-  state.counters["triangles"] = static_cast<double>(mesh.triangles.size());
-}
-BENCHMARK(BM_IsolatedRoundTrip)
-    ->Arg(12)
-    ->Arg(1000000)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
-
-/// The worker's side of BM_WorkerRoundTrip: request[0] is the triangle count.
-engine::TriangleMesh mesh_task(const std::vector<std::string>& request, engine::ImportStats&) {
-  return mesh_of(std::stoll(request.at(0)));
-}
-
-void BM_WorkerRoundTrip(benchmark::State& state) {
-  const std::vector<std::string> request{std::to_string(state.range(0))};
-  for (auto _ : state) {
-    engine::ImportStats stats;
-    const engine::TriangleMesh got = engine::detail::run_in_worker(
-        "bench.obj", engine::ImportLimits{10.0, std::uint64_t{4} << 30}, "assimp", stats, mesh_task,
-        request);
-    benchmark::DoNotOptimize(got.triangles.data());
+    engine::detail::stop_import_worker();
+    const engine::TriangleMesh mesh = engine::import_mesh(file);
+    benchmark::DoNotOptimize(mesh.triangles.data());
   }
   engine::detail::stop_import_worker();
-  state.counters["triangles"] = static_cast<double>(mesh_of(state.range(0)).triangles.size());
 }
-BENCHMARK(BM_WorkerRoundTrip)->Arg(12)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_FreshWorkerObj)->Arg(12)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-void BM_InProcessCopy(benchmark::State& state) {
-  const engine::TriangleMesh& mesh = mesh_of(state.range(0));
+void BM_WarmWorkerObj(benchmark::State& state) {
+  const std::filesystem::path& file = obj_file(state.range(0));
+  engine::import_mesh(file);
   for (auto _ : state) {
-    engine::TriangleMesh copy = mesh;
-    benchmark::DoNotOptimize(copy.triangles.data());
+    const engine::TriangleMesh mesh = engine::import_mesh(file);
+    benchmark::DoNotOptimize(mesh.triangles.data());
+  }
+  engine::detail::stop_import_worker();
+}
+BENCHMARK(BM_WarmWorkerObj)->Arg(12)->Arg(200000)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_AssimpInProcess(benchmark::State& state) {
+  const std::filesystem::path& file = obj_file(state.range(0));
+  for (auto _ : state) {
+    Assimp::Importer importer;
+    const aiScene* scene = importer.ReadFile(file.string(), 0);
+    benchmark::DoNotOptimize(scene);
   }
 }
-BENCHMARK(BM_InProcessCopy)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_AssimpInProcess)->Arg(200000)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 

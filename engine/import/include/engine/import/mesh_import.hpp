@@ -1,5 +1,7 @@
 #pragma once
-/// @file Reading meshes with assimp (kept apart: the dynamics never include it).
+/// @file Reading mesh files: binary STL by tumble's own reader, every other format by assimp in
+/// a process of its own (the import worker, tumble-import; assimp is never loaded into the
+/// caller's process).
 
 #include <cstddef>
 #include <cstdint>
@@ -32,10 +34,10 @@ struct ImportStats {
 /// included, are always assimp's.
 enum class StlReader { tumble, assimp };
 
-/// Bounds on assimp's reading of one file. assimp runs in a child process (a fork of tumble)
-/// under these limits, so that its own faults on malformed files (crashes, endless loops,
-/// runaway memory, leaks) end in a refusal naming the file instead of taking tumble down.
-/// Zero means the default, which grows with the file's size.
+/// Bounds on assimp's reading of one file. assimp runs in the import worker, a program of its
+/// own that tumble starts (never a fork of the caller), under these limits, so that its own faults
+/// on malformed files (crashes, endless loops, runaway memory, leaks) end in a refusal naming the
+/// file instead of taking tumble down. Zero means the default, which grows with the file's size.
 struct ImportLimits {
   double cpu_seconds = 0.0;        ///< default: 10 s + 2 s per whole MiB of file
   std::uint64_t memory_bytes = 0;  ///< default: 2 GiB + 64 bytes per byte of file (at most RAM)
