@@ -73,8 +73,9 @@ void check(benchmark::State& state, const engine::TriangleMesh& mesh,
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(mesh.triangles.size()));
   state.counters["pairs"] = static_cast<double>(stats.candidates);
   state.counters["exact"] = static_cast<double>(stats.deferred);
-  state.counters["certified"] =
-      stats.regions == 0 ? 0.0 : static_cast<double>(stats.certified) / stats.regions;
+  state.counters["certified"] = stats.regions == 0 ? 0.0
+                                                   : static_cast<double>(stats.certified) /
+                                                         static_cast<double>(stats.regions);
 }
 
 void BM_AnalyzeTorus(benchmark::State& state) {

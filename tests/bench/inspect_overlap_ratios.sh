@@ -17,7 +17,7 @@ done
 file="${TMPDIR:-/tmp}/tumble_bench_torus_1m.stl"
 
 # assimp's read, in milliseconds: the least of the repetitions' real times.
-read_ms=$("$bench" --benchmark_filter='^BM_AssimpReadStl$' --benchmark_repetitions=3 \
+read_ms=$("$bench" --benchmark_filter='^BM_AssimpReadStl/' --benchmark_repetitions=3 \
   --benchmark_format=csv 2>/dev/null |
   awk -F, '$1 ~ /^"BM_AssimpReadStl[\/"]/ && $1 !~ /_(mean|median|stddev|cv)/ {
              t = $3 + 0; if (best == "" || t < best) best = t }

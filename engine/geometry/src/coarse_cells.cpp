@@ -117,12 +117,29 @@ void CoarseCells::list_faces(unsigned threads) {
       }
     }
   };
+  // Each vertex's cell by its index in the box: a face whose three agree (most faces, the
+  // cells being many times larger than they) is listed there alone, without its range.
+  const std::size_t vertices = mesh_.positions.size();
+  std::vector<std::uint32_t> vertex_index(vertices);
+  on_threads(threads, [&](unsigned thread) {
+    for (std::size_t v = vertices * thread / threads; v < vertices * (thread + 1) / threads; ++v) {
+      vertex_index[v] = static_cast<std::uint32_t>(dense_index(vertex_cell_[v]));
+    }
+  });
   on_threads(threads, [&](unsigned thread) {
     std::vector<std::uint32_t>& mine = count[thread];
     std::size_t total = 0;
     for (std::size_t t = n * thread / threads; t < n * (thread + 1) / threads; ++t) {
-      const Range r = range(static_cast<std::uint32_t>(t));
+      const auto& f = mesh_.triangles[t];
       Listing& listing = listing_[t];
+      const std::uint32_t first = vertex_index[f[0]];
+      if (first == vertex_index[f[1]] && first == vertex_index[f[2]]) {
+        listing = {first, {0, 0, 0}};
+        ++mine[first];
+        ++total;
+        continue;
+      }
+      const Range r = range(static_cast<std::uint32_t>(t));
       listing.low = static_cast<std::uint32_t>(dense_index(r.low));
       for (int axis = 0; axis < 3; ++axis) {
         const std::int64_t span = std::int64_t{r.high[axis]} - r.low[axis];
@@ -145,13 +162,34 @@ void CoarseCells::list_faces(unsigned threads) {
   std::size_t total = 0;
   for (const std::size_t listed : listings) total += listed;
   if (total > kListingsPerFace * n) return;
+  number_cells(count);
+  faces_.resize(total);
+  on_threads(threads, [&](unsigned thread) {
+    std::vector<std::uint32_t>& cursor = count[thread];
+    for (std::size_t t = n * thread / threads; t < n * (thread + 1) / threads; ++t) {
+      const Listing& listing = listing_[t];
+      if ((listing.span[0] | listing.span[1] | listing.span[2]) == 0) {
+        faces_[cursor[listing.low]++] = static_cast<std::uint32_t>(t);
+        continue;
+      }
+      for_each_cell(listing, [&](std::size_t cell) {
+        faces_[cursor[cell]++] = static_cast<std::uint32_t>(t);
+      });
+    }
+  });
+  usable_ = true;
+}
+
+/// Numbers the non-empty cells and turns each thread's counts into its cursors in them.
+void CoarseCells::number_cells(std::vector<std::vector<std::uint32_t>>& count) {
+  const std::size_t cells = count.front().size();
   index_.assign(cells, 0);
   start_.push_back(0);
   for (std::size_t cell = 0; cell < cells; ++cell) {
     std::uint32_t offset = start_.back();
-    for (unsigned thread = 0; thread < threads; ++thread) {
-      const std::uint32_t here = count[thread][cell];
-      count[thread][cell] = offset;  // now the thread's cursor in this cell
+    for (std::vector<std::uint32_t>& thread_count : count) {
+      const std::uint32_t here = thread_count[cell];
+      thread_count[cell] = offset;  // now the thread's cursor in this cell
       offset += here;
     }
     if (offset == start_.back()) continue;
@@ -162,16 +200,6 @@ void CoarseCells::list_faces(unsigned threads) {
                             static_cast<std::int32_t>(origin_[2] + c / extent_[0] / extent_[1])});
     start_.push_back(offset);
   }
-  faces_.resize(total);
-  on_threads(threads, [&](unsigned thread) {
-    std::vector<std::uint32_t>& cursor = count[thread];
-    for (std::size_t t = n * thread / threads; t < n * (thread + 1) / threads; ++t) {
-      for_each_cell(listing_[t], [&](std::size_t cell) {
-        faces_[cursor[cell]++] = static_cast<std::uint32_t>(t);
-      });
-    }
-  });
-  usable_ = true;
 }
 
 CellCoordinates CoarseCells::pair_cell(std::uint32_t t, std::uint32_t u) const {

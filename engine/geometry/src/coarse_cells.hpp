@@ -35,6 +35,11 @@ class CoarseCells {
   }
   const CellCoordinates& coordinates(std::size_t i) const { return coordinates_[i]; }
   const CellCoordinates& vertex_cell(std::uint32_t v) const { return vertex_cell_[v]; }
+  /// Whether all three vertices of face `t` lie in one cell (the face is listed there alone).
+  bool in_one_cell(std::uint32_t t) const {
+    const Listing& listing = listing_[t];
+    return (listing.span[0] | listing.span[1] | listing.span[2]) == 0;
+  }
   /// Whether a vertex's coordinates lie in the filter's range (certified_orientation.hpp).
   bool in_filter_range(std::uint32_t v) const { return in_range_[v] != 0; }
   /// The cell a pair of faces whose boxes overlap belongs to (see above).
@@ -55,6 +60,7 @@ class CoarseCells {
   void find_vertex_cells(unsigned threads);
   bool choose_layout();
   void list_faces(unsigned threads);
+  void number_cells(std::vector<std::vector<std::uint32_t>>& count);
   std::size_t dense_index(const CellCoordinates& c) const;
 
   const TriangleMesh& mesh_;

@@ -117,6 +117,7 @@ class PairSearch {
   std::vector<Tally> tallies_;
   std::optional<CoarseCells> coarse_;
   bool certifying_ = false;
+  bool any_active_ = true;                 ///< whether any face is left for the fine grid
   std::vector<std::uint8_t> uncertified_;  ///< per coarse cell
 };
 
@@ -186,6 +187,7 @@ void PairSearch::certify_regions(double cell) {
   if (!coarse_->usable()) return;
   uncertified_.assign(coarse_->size(), 0);
   std::atomic<std::size_t> next{0};
+  std::atomic<bool> any_uncertified{false};
   on_threads(threads_, [&](unsigned thread) {
     RegionCertificate certificate(mesh_, *coarse_);
     Tally& tally = tallies_[thread];
@@ -196,12 +198,14 @@ void PairSearch::certify_regions(double cell) {
         continue;
       }
       uncertified_[i] = 1;
+      any_uncertified.store(true, std::memory_order_relaxed);
       for (const std::uint32_t f : coarse_->faces(i)) {
         std::atomic_ref<std::uint8_t>(active_[f]).store(1, std::memory_order_relaxed);
       }
     }
   });
   certifying_ = true;
+  any_active_ = any_uncertified.load();
 }
 
 /// Whether a pair of faces whose boxes overlap belongs to a coarse cell that is not certified.
@@ -263,6 +267,7 @@ void PairSearch::cross_levels(const FaceGrid& grid, unsigned thread) {
 
 /// The pairs of the faces not covered by certificates, from the fine grid.
 void PairSearch::find_pairs(double cell) {
+  if (!any_active_) return;
   std::vector<std::uint8_t> include(faces_.size());
   for (std::size_t t = 0; t < faces_.size(); ++t) {
     include[t] = active_[t] != 0 && collinear_[t] == 0 ? 1 : 0;
@@ -450,15 +455,18 @@ FacePairs PairSearch::total() {
 
 FacePairs PairSearch::run() {
   const std::size_t n = faces_.size();
-  boxes_.resize(n);
-  planes_.resize(n);
-  in_range_.resize(n);
   collinear_.assign(n, 0);
   active_.assign(n, 0);
   const double extent = median_extent();
   if (options_.certify) certify_regions(kCoarseCellsPerExtent * extent);
   if (!certifying_) std::fill(active_.begin(), active_.end(), std::uint8_t{1});
-  on_threads(threads_, [this](unsigned thread) { prepare(thread); });
+  if (any_active_) {
+    // Per face, but only when some face is left for the fine grid (their pages cost time).
+    boxes_.resize(n);
+    planes_.resize(n);
+    in_range_.resize(n);
+    on_threads(threads_, [this](unsigned thread) { prepare(thread); });
+  }
   find_pairs(kFineCellsPerExtent * extent);
   return total();
 }

@@ -79,6 +79,7 @@ bool RegionCertificate::find_boundary(std::span<const std::uint32_t> faces,
   // An edge spans the cell unless both its vertices lie below it, or both above, along an axis.
   boundary_.clear();
   for (const std::uint32_t f : faces) {
+    if (cells_.in_one_cell(f)) continue;  // its edges lie in the cell
     const auto& t = mesh_.triangles[f];
     const auto [below0, above0] = side_of(cells_.vertex_cell(t[0]), cell);
     const auto [below1, above1] = side_of(cells_.vertex_cell(t[1]), cell);
