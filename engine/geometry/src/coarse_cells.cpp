@@ -19,6 +19,7 @@ constexpr double kCoarseCellLimit = 0x1p30;        // cell coordinates are clamp
 constexpr std::size_t kListingsPerFace = 4;        // at most this many listings per face on average
 constexpr std::size_t kBoxCellsPerFace = 2;        // at most this many cells in the box per face
 constexpr std::size_t kMinimumBoxCells = 1 << 16;  // ... or this many
+constexpr std::size_t kTooMany = std::numeric_limits<std::size_t>::max() / 2;
 
 /// v / cell rounded down, but for the rounding of the offset: monotone in v.
 std::int32_t coarse_cell_of(double v, double inverse) {
@@ -99,16 +100,29 @@ std::size_t CoarseCells::dense_index(const CellCoordinates& c) const {
       (std::int64_t{c[0]} - origin_[0]));
 }
 
+/// Where face t is listed (spans beyond 0xffff clamped to it).
+CoarseCells::Listing CoarseCells::listing(std::uint32_t t) const {
+  const auto& f = mesh_.triangles[t];
+  const std::uint32_t first = vertex_index_[f[0]];
+  if (first == vertex_index_[f[1]] && first == vertex_index_[f[2]]) return {first, {0, 0, 0}};
+  const Range r = range(t);
+  Listing out{static_cast<std::uint32_t>(dense_index(r.low)), {0, 0, 0}};
+  for (int axis = 0; axis < 3; ++axis) {
+    const std::int64_t span = std::int64_t{r.high[axis]} - r.low[axis];
+    out.span[axis] = static_cast<std::uint16_t>(std::min<std::int64_t>(span, 0xffff));
+  }
+  return out;
+}
+
 /// Counts each cell's faces per thread, numbers the non-empty cells, then lists the faces.
+/// Each vertex's cell is first given by its index in the box: a face whose three agree (most
+/// faces, the cells being many times larger than they) is listed there alone, at once.
 void CoarseCells::list_faces(unsigned threads) {
   const std::size_t cells = static_cast<std::size_t>(extent_[0] * extent_[1] * extent_[2]);
-  const std::size_t n = mesh_.triangles.size();
+  const std::size_t n = mesh_.triangles.size(), vertices = mesh_.positions.size();
   const auto stride_y = static_cast<std::size_t>(extent_[0]);
   const auto stride_z = static_cast<std::size_t>(extent_[0] * extent_[1]);
-  listing_.resize(n);
-  std::vector<std::vector<std::uint32_t>> count(threads, std::vector<std::uint32_t>(cells, 0));
-  std::vector<std::size_t> listings(threads, 0);
-  // Calls visit(cell) for every cell in the box of the face's listing.
+  // Calls visit(cell) for every cell in the box of a listing.
   const auto for_each_cell = [&](const Listing& listing, const auto& visit) {
     for (std::size_t z = 0; z <= listing.span[2]; ++z) {
       for (std::size_t y = 0; y <= listing.span[1]; ++y) {
@@ -117,42 +131,22 @@ void CoarseCells::list_faces(unsigned threads) {
       }
     }
   };
-  // Each vertex's cell by its index in the box: a face whose three agree (most faces, the
-  // cells being many times larger than they) is listed there alone, without its range.
-  const std::size_t vertices = mesh_.positions.size();
-  std::vector<std::uint32_t> vertex_index(vertices);
+  vertex_index_.resize(vertices);
   on_threads(threads, [&](unsigned thread) {
     for (std::size_t v = vertices * thread / threads; v < vertices * (thread + 1) / threads; ++v) {
-      vertex_index[v] = static_cast<std::uint32_t>(dense_index(vertex_cell_[v]));
+      vertex_index_[v] = static_cast<std::uint32_t>(dense_index(vertex_cell_[v]));
     }
   });
+  std::vector<std::vector<std::uint32_t>> count(threads, std::vector<std::uint32_t>(cells, 0));
+  std::vector<std::size_t> listings(threads, 0);
   on_threads(threads, [&](unsigned thread) {
     std::vector<std::uint32_t>& mine = count[thread];
     std::size_t total = 0;
     for (std::size_t t = n * thread / threads; t < n * (thread + 1) / threads; ++t) {
-      const auto& f = mesh_.triangles[t];
-      Listing& listing = listing_[t];
-      const std::uint32_t first = vertex_index[f[0]];
-      if (first == vertex_index[f[1]] && first == vertex_index[f[2]]) {
-        listing = {first, {0, 0, 0}};
-        ++mine[first];
-        ++total;
-        continue;
-      }
-      const Range r = range(static_cast<std::uint32_t>(t));
-      listing.low = static_cast<std::uint32_t>(dense_index(r.low));
-      for (int axis = 0; axis < 3; ++axis) {
-        const std::int64_t span = std::int64_t{r.high[axis]} - r.low[axis];
-        listing.span[axis] = static_cast<std::uint16_t>(std::min<std::int64_t>(span, 0xffff));
-        if (span >= 0xffff) total = std::numeric_limits<std::size_t>::max() / 2;
-      }
+      const Listing l = listing(static_cast<std::uint32_t>(t));
+      if (std::max({l.span[0], l.span[1], l.span[2]}) == 0xffff) total = kTooMany;
       if (total > kListingsPerFace * n) break;
-      if (listing.span[0] == 0 && listing.span[1] == 0 && listing.span[2] == 0) {
-        ++mine[listing.low];
-        ++total;
-        continue;
-      }
-      for_each_cell(listing, [&](std::size_t cell) {
+      for_each_cell(l, [&](std::size_t cell) {
         ++mine[cell];
         ++total;
       });
@@ -160,19 +154,14 @@ void CoarseCells::list_faces(unsigned threads) {
     listings[thread] = total;
   });
   std::size_t total = 0;
-  for (const std::size_t listed : listings) total += listed;
+  for (const std::size_t listed : listings) total = std::min(kTooMany, total + listed);
   if (total > kListingsPerFace * n) return;
   number_cells(count);
   faces_.resize(total);
   on_threads(threads, [&](unsigned thread) {
     std::vector<std::uint32_t>& cursor = count[thread];
     for (std::size_t t = n * thread / threads; t < n * (thread + 1) / threads; ++t) {
-      const Listing& listing = listing_[t];
-      if ((listing.span[0] | listing.span[1] | listing.span[2]) == 0) {
-        faces_[cursor[listing.low]++] = static_cast<std::uint32_t>(t);
-        continue;
-      }
-      for_each_cell(listing, [&](std::size_t cell) {
+      for_each_cell(listing(static_cast<std::uint32_t>(t)), [&](std::size_t cell) {
         faces_[cursor[cell]++] = static_cast<std::uint32_t>(t);
       });
     }

@@ -37,8 +37,8 @@ class CoarseCells {
   const CellCoordinates& vertex_cell(std::uint32_t v) const { return vertex_cell_[v]; }
   /// Whether all three vertices of face `t` lie in one cell (the face is listed there alone).
   bool in_one_cell(std::uint32_t t) const {
-    const Listing& listing = listing_[t];
-    return (listing.span[0] | listing.span[1] | listing.span[2]) == 0;
+    const auto& f = mesh_.triangles[t];
+    return vertex_index_[f[0]] == vertex_index_[f[1]] && vertex_index_[f[0]] == vertex_index_[f[2]];
   }
   /// Whether a vertex's coordinates lie in the filter's range (certified_orientation.hpp).
   bool in_filter_range(std::uint32_t v) const { return in_range_[v] != 0; }
@@ -57,6 +57,7 @@ class CoarseCells {
     std::array<std::uint16_t, 3> span;
   };
   Range range(std::uint32_t t) const;
+  Listing listing(std::uint32_t t) const;
   void find_vertex_cells(unsigned threads);
   bool choose_layout();
   void list_faces(unsigned threads);
@@ -74,7 +75,7 @@ class CoarseCells {
   std::vector<std::uint32_t> start_;          ///< its faces' start in faces_, then the end
   std::vector<std::uint32_t> faces_;
   std::vector<std::uint32_t> index_;  ///< per cell of the box: its index + 1, or 0 when empty
-  std::vector<Listing> listing_;      ///< per face
+  std::vector<std::uint32_t> vertex_index_;  ///< per vertex: its cell's index in the box
 };
 
 }  // namespace tumble::engine::detail
