@@ -221,7 +221,7 @@ CLI::App& add_inspect_command(CLI::App& cli, InspectOptions& options) {
   inspect.add_flag_callback(
       "--skip-overlap-checks", [&options] { options.mass.check_overlap = false; },
       "Do not test the parts' faces for crossings, self-intersections and repeats (their "
-      "containment in each other is still decided); any there are then count twice unwarned");
+      "containment in each other is still decided; parts that cross may be taken as nested)");
   add_output_options(inspect, options);
   add_batch_options(inspect, options);
   return inspect;
