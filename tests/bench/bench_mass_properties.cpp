@@ -4,6 +4,8 @@
 //   BM_AssimpReadStl         assimp reading a 1M-triangle binary STL, no post-processing
 //   BM_InspectStl            `tumble inspect` end to end on that file: import, weld, checks,
 //                            integrals, principal axes (the issue's budget: 2x assimp's read)
+//   BM_InspectStlSkippingChecks  the same without the faces' overlap checks (issue 27's budget:
+//                            BM_InspectStl at most 1.3x this, and 1.5x BM_AssimpReadStl)
 //   BM_InspectStlThroughAssimp  the same with assimp reading the file (tumble's own binary
 //                            STL reader bypassed), for comparison
 //   BM_AssimpReadShuffledStl, BM_InspectShuffledStl  the first two on the same torus with
@@ -103,8 +105,9 @@ void assimp_read(benchmark::State& state, const std::filesystem::path& file) {
   state.SetItemsProcessed(state.iterations() * 1'000'000);
 }
 
-void inspect(benchmark::State& state, const std::filesystem::path& file) {
-  for (auto _ : state) benchmark::DoNotOptimize(app::inspect_file(file, {}));
+void inspect(benchmark::State& state, const std::filesystem::path& file,
+             const engine::MassOptions& options = {}) {
+  for (auto _ : state) benchmark::DoNotOptimize(app::inspect_file(file, options));
   state.SetItemsProcessed(state.iterations() * 1'000'000);
 }
 
@@ -117,6 +120,13 @@ void BM_InspectStl(benchmark::State& state) {
   inspect(state, million_triangle_stl());
 }
 BENCHMARK(BM_InspectStl)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_InspectStlSkippingChecks(benchmark::State& state) {
+  engine::MassOptions options;
+  options.check_overlap = false;
+  inspect(state, million_triangle_stl(), options);
+}
+BENCHMARK(BM_InspectStlSkippingChecks)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_AssimpReadShuffledStl(benchmark::State& state) {
   assimp_read(state, shuffled_million_triangle_stl());

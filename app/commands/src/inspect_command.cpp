@@ -69,7 +69,7 @@ void add_batch_options(CLI::App& inspect, InspectOptions& options) {
   inspect
       .add_option("--jobs", options.jobs,
                   "Files inspected at once (default 1; 0: one per core); output stays in input "
-                  "order")
+                  "order. The cores left over split each file's overlap checks")
       ->check(CLI::NonNegativeNumber);
   inspect.add_option_function<std::string>(
       "-o,--output", [&](const std::string& value) { options.output = value; },
@@ -117,6 +117,10 @@ CLI::App& add_inspect_command(CLI::App& cli, InspectOptions& options) {
   inspect.add_flag("--allow-overlap", options.mass.allow_overlap,
                    "Accept parts that overlap, intersect themselves or repeat (their shared "
                    "volume counts twice; a warning says how much); by default an error");
+  inspect.add_flag_callback(
+      "--skip-overlap-checks", [&options] { options.mass.check_overlap = false; },
+      "Do not test the parts' faces for crossings, self-intersections and repeats (their "
+      "containment in each other is still decided; parts that cross may be taken as nested)");
   add_output_options(inspect, options);
   add_batch_options(inspect, options);
   return inspect;

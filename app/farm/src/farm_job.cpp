@@ -138,7 +138,8 @@ const std::vector<FarmedCommand>& farmed_commands() {
         {"--mass", true},
         {"--scale", true},
         {"--shell", true},
-        {"--allow-overlap", false}}},
+        {"--allow-overlap", false},
+        {"--skip-overlap-checks", false}}},
   };
   return commands;
 }

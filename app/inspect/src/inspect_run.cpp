@@ -60,9 +60,18 @@ unsigned inspect_jobs(unsigned jobs) {
   return jobs == 0 ? std::max(1u, std::thread::hardware_concurrency()) : jobs;
 }
 
+/// `options` with the cores left by the files inspected at once given to each file's overlap
+/// checks.
+InspectOptions with_check_threads(InspectOptions options) {
+  options.mass.jobs =
+      std::max(1u, std::thread::hardware_concurrency() / inspect_jobs(options.jobs));
+  return options;
+}
+
 }  // namespace
 
-std::vector<InspectResult> inspect_files(const InspectOptions& options) {
+std::vector<InspectResult> inspect_files(const InspectOptions& given) {
+  const InspectOptions options = with_check_threads(given);
   bool batch = false;
   const std::vector<InspectInput> inputs =
       expand_inspect_inputs(options.files, options.recursive, batch);
@@ -86,7 +95,7 @@ nlohmann::json inspect_json(const engine::MeshReport& report) {
 
 int write_inspection(const InspectOptions& given, std::ostream& out, std::ostream& err) {
   const std::optional<Shard> shard = inspect_shard(given);
-  InspectOptions options = given;
+  InspectOptions options = with_check_threads(given);
   if (shard) options.format = InspectFormat::jsonl;
   bool batch = false;
   const std::vector<InspectInput> inputs =

@@ -1,19 +1,22 @@
 // Exact intersection tests between and within parts (part_overlap.hpp).
 //
-// Every decision is a sign of a determinant evaluated exactly by CGAL's filtered predicates
-// (Shewchuk 1997; the triangle-triangle test of Guigue and Devillers 2003), so it is the same
-// at any scale and for any order of the parts. Three passes:
-// 1. the triangles' bounding boxes are intersected (CGAL::box_self_intersection_d, Zomorodian
-//    and Edelsbrunner 2002), and each candidate pair is tested: within a part, two faces
-//    cross where they meet beyond their shared vertices (a face sharing one vertex with the
-//    other meets it beyond that vertex only if its opposite edge reaches the other face) and
-//    pass through each other; faces that only touch along their boundaries, or lie in one
-//    plane, are not judged a crossing (test_same_part says why); the same face twice is a
-//    repeat (same orientation) or a mirror image (opposite);
+// Every decision is a sign of a determinant, exact (Shewchuk 1997; the triangle-triangle test
+// of Guigue and Devillers 2003), so it is the same at any scale and for any order of the
+// parts. Three passes:
+// 1. every pair of faces whose boxes overlap is judged (face_pairs.hpp finds them with a grid
+//    and decides most with a certified floating-point filter; what it cannot decide comes
+//    back here, to judge()): within a part, two faces cross where they meet beyond their
+//    shared vertices (a face sharing one vertex with the other meets it beyond that vertex
+//    only if its opposite edge reaches the other face) and pass through each other; faces that
+//    only touch along their boundaries, or lie in one plane, are not judged a crossing
+//    (judge_same_part says why); the same face twice is a repeat (same orientation) or a
+//    mirror image (opposite); faces of two parts meet or do not;
 // 2. between parts whose surfaces meet, the corefined Boolean of the two solids (PMP) says
 //    whether the volumes overlap (a non-empty result) or only touch (an empty one);
 // 3. containment: the exact winding number of one part around a vertex of the other, by a ray
 //    whose every crossing is a clean pass through a face's interior (else another ray).
+// The reference method of pass 1 (tests) finds the pairs with CGAL::box_self_intersection_d
+// (Zomorodian and Edelsbrunner 2002) and judges each here.
 #include "engine/geometry/part_overlap.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -27,9 +30,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <future>
 #include <map>
 #include <utility>
+
+#include "face_pairs.hpp"
 
 namespace tumble::engine::detail {
 namespace {
@@ -43,22 +47,8 @@ using Ray = Kernel::Ray_3;
 using Vector = Kernel::Vector_3;
 using SurfaceMesh = CGAL::Surface_mesh<Point>;
 using Face = std::array<std::uint32_t, 3>;
-// A face's box in floats rounded outward (half the memory of doubles; a box only a little too
-// large just adds a candidate pair for the exact tests). Its id is its face's address: stable
-// when the algorithm copies the boxes.
-using Box = CGAL::Box_intersection_d::Box_with_handle_d<float, 3, const Face*,
-                                                        CGAL::Box_intersection_d::ID_FROM_HANDLE>;
 
-/// What the face pairs of one thread found: per part, then per pair of parts.
-struct FaceCounts {
-  std::size_t repeated = 0, mirrored = 0, crossing = 0;
-};
-struct PairCounts {
-  std::vector<FaceCounts> parts;
-  std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> meeting;
-};
-
-/// What the triangle pairs of pass 1 found.
+/// What pass 1 found in one part, and the part's extent.
 struct PartTally {
   std::size_t triangles = 0;       ///< non-degenerate ones
   std::size_t repeated = 0;        ///< pairs of the same face, same orientation
@@ -67,67 +57,67 @@ struct PartTally {
   double signed_volume = 0.0;      ///< times 6, about the part's first vertex
   double absolute_volume = 0.0;    ///< sum of |det|: the rounding scale of signed_volume
   std::uint32_t first_vertex = 0;  ///< reference of signed_volume
-  CGAL::Bbox_3 box;
+  Eigen::AlignedBox3d box;
   std::vector<std::uint32_t> faces;  ///< its triangles
 };
 
-class Analysis {
+class Analysis final : public ExactFaceTests {
  public:
   Analysis(const TriangleMesh& mesh, const std::vector<std::uint32_t>& triangle_part,
-           std::size_t parts);
-  PartOverlaps run();
+           std::size_t parts)
+      : mesh_(mesh), faces_(mesh.triangles), triangle_part_(triangle_part), parts_(parts) {}
+  PartOverlaps run(const OverlapOptions& options);
+
+  bool collinear(std::uint32_t t) const override {
+    const Face& f = faces_[t];
+    return CGAL::collinear(point(f[0]), point(f[1]), point(f[2]));
+  }
+  PairVerdict judge(std::uint32_t t, std::uint32_t u) const override;
 
  private:
   void tally_parts();
-  void find_face_pairs();
-  void test_pair(std::uint32_t t, std::uint32_t u, PairCounts& counts) const;
-  void test_same_part(std::uint32_t t, std::uint32_t u, FaceCounts& part) const;
+  FacePairs reference_pairs() const;
+  PairVerdict judge_same_part(std::uint32_t t, std::uint32_t u) const;
   bool straddles(const Face& a, const Face& b) const;
+  void part_findings(PartOverlaps& out) const;
   void judge_parts(std::uint32_t i, std::uint32_t j, PartOverlaps& out);
   bool judge_meeting(std::uint32_t i, std::uint32_t j, std::size_t pairs, PartOverlaps& out);
   std::optional<int> winding(std::uint32_t part, const Point& p) const;
   std::optional<int> winding_around_part(std::uint32_t outer, std::uint32_t inner) const;
   const SurfaceMesh* surface(std::uint32_t part);
+  Point point(std::uint32_t v) const {
+    const Eigen::Vector3d& p = mesh_.positions[v];
+    return {p.x(), p.y(), p.z()};
+  }
   Triangle triangle(std::uint32_t t) const {
     const Face& f = faces_[t];
-    return {points_[f[0]], points_[f[1]], points_[f[2]]};
+    return {point(f[0]), point(f[1]), point(f[2])};
   }
 
+  const TriangleMesh& mesh_;
+  const std::vector<Face>& faces_;
   const std::vector<std::uint32_t>& triangle_part_;
-  std::vector<Point> points_;
-  std::vector<Face> faces_;
-  std::vector<bool> degenerate_;
+  std::vector<std::uint8_t> degenerate_;
   std::vector<PartTally> parts_;
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> meeting_;  ///< pairs of faces
   std::map<std::uint32_t, std::optional<SurfaceMesh>> surfaces_;            ///< built lazily
 };
 
-Analysis::Analysis(const TriangleMesh& mesh, const std::vector<std::uint32_t>& triangle_part,
-                   std::size_t parts)
-    : triangle_part_(triangle_part), parts_(parts) {
-  points_.reserve(mesh.positions.size());
-  for (const Eigen::Vector3d& p : mesh.positions) points_.emplace_back(p.x(), p.y(), p.z());
-  faces_ = mesh.triangles;
-  degenerate_.resize(faces_.size());
-  for (std::size_t t = 0; t < faces_.size(); ++t) {
-    const Face& f = faces_[t];
-    degenerate_[t] = CGAL::collinear(points_[f[0]], points_[f[1]], points_[f[2]]);
-  }
-}
-
+/// Each part's faces, box and signed volume (the counts of pass 1 are already there).
 void Analysis::tally_parts() {
   for (std::uint32_t t = 0; t < faces_.size(); ++t) {
     PartTally& part = parts_[triangle_part_[t]];
     const Face& f = faces_[t];
     if (part.faces.empty()) part.first_vertex = f[0];
     part.faces.push_back(t);
-    const Point& r = points_[part.first_vertex];
-    const Vector a = points_[f[0]] - r, b = points_[f[1]] - r, c = points_[f[2]] - r;
-    const double det = a * CGAL::cross_product(b, c);
+    const Eigen::Vector3d& r = mesh_.positions[part.first_vertex];
+    const Eigen::Vector3d a = mesh_.positions[f[0]] - r, b = mesh_.positions[f[1]] - r,
+                          c = mesh_.positions[f[2]] - r;
+    const double det = a.dot(b.cross(c));
     part.signed_volume += det;
     part.absolute_volume += std::abs(det);
-    part.box += triangle(t).bbox();
-    if (!degenerate_[t]) ++part.triangles;
+    for (const std::uint32_t v : f) part.box.extend(mesh_.positions[v]);
+    if (degenerate_[t] == 0) ++part.triangles;
   }
 }
 
@@ -151,7 +141,7 @@ bool Analysis::straddles(const Face& a, const Face& b) const {
   for (const std::uint32_t v : a) {
     if (v == b[0] || v == b[1] || v == b[2]) continue;
     const CGAL::Orientation side =
-        CGAL::orientation(points_[b[0]], points_[b[1]], points_[b[2]], points_[v]);
+        CGAL::orientation(point(b[0]), point(b[1]), point(b[2]), point(v));
     positive |= side == CGAL::POSITIVE;
     negative |= side == CGAL::NEGATIVE;
   }
@@ -163,42 +153,80 @@ bool Analysis::straddles(const Face& a, const Face& b) const {
 /// touch along their boundaries do not, nor do faces in one plane: an inner double wall (two
 /// solids face to face) lies there, and so does a non-convex face fanned into triangles that
 /// overlap and cancel, which still bounds the right volume.
-void Analysis::test_same_part(std::uint32_t t, std::uint32_t u, FaceCounts& part) const {
+PairVerdict Analysis::judge_same_part(std::uint32_t t, std::uint32_t u) const {
   const Face &ft = faces_[t], &fu = faces_[u];
   int ct = 0, cu = 0;
   const int shared = shared_vertices(ft, fu, ct, cu);
   if (shared == 3) {
     // The same face twice: the same cyclic order is a repeat, the reverse a mirror image.
     const bool same = ft[(ct + 1) % 3] == fu[(cu + 1) % 3];
-    ++(same ? part.repeated : part.mirrored);
-    return;
+    return same ? PairVerdict::kRepeated : PairVerdict::kMirrored;
   }
   // Sharing an edge, they can meet beyond it only in one plane (folded onto each other).
-  if (shared == 2) return;
+  if (shared == 2) return PairVerdict::kApart;
   // Passing through each other needs corners strictly on both sides of each plane: on a smooth
   // surface, most neighbours sharing a vertex fail this first, cheap test.
-  if (!straddles(ft, fu) || !straddles(fu, ft)) return;
+  if (!straddles(ft, fu) || !straddles(fu, ft)) return PairVerdict::kApart;
   const Triangle tt = triangle(t), tu = triangle(u);
   if (shared == 1) {
     // Sharing a vertex, they meet beyond it only if an opposite edge reaches the other face.
-    const Segment edge_t(points_[ft[(ct + 1) % 3]], points_[ft[(ct + 2) % 3]]);
-    const Segment edge_u(points_[fu[(cu + 1) % 3]], points_[fu[(cu + 2) % 3]]);
-    if (!CGAL::do_intersect(edge_t, tu) && !CGAL::do_intersect(edge_u, tt)) return;
-  } else if (shared == 0 && !CGAL::do_intersect(tt, tu)) {
-    return;
+    const Segment edge_t(point(ft[(ct + 1) % 3]), point(ft[(ct + 2) % 3]));
+    const Segment edge_u(point(fu[(cu + 1) % 3]), point(fu[(cu + 2) % 3]));
+    if (!CGAL::do_intersect(edge_t, tu) && !CGAL::do_intersect(edge_u, tt)) {
+      return PairVerdict::kApart;
+    }
+  } else if (!CGAL::do_intersect(tt, tu)) {
+    return PairVerdict::kApart;
   }
-  ++part.crossing;
+  return PairVerdict::kCrossing;
 }
 
-void Analysis::test_pair(std::uint32_t t, std::uint32_t u, PairCounts& counts) const {
-  const std::uint32_t pt = triangle_part_[t], pu = triangle_part_[u];
-  if (pt == pu) {
-    test_same_part(t, u, counts.parts[pt]);
-  } else if (CGAL::do_intersect(triangle(t), triangle(u))) {
-    ++counts.meeting[std::minmax(pt, pu)];  // parts share no vertex: a plain triangle test
-  }
+PairVerdict Analysis::judge(std::uint32_t t, std::uint32_t u) const {
+  if (triangle_part_[t] == triangle_part_[u]) return judge_same_part(t, u);
+  // Parts share no vertex: a plain triangle test.
+  return CGAL::do_intersect(triangle(t), triangle(u)) ? PairVerdict::kMeeting : PairVerdict::kApart;
 }
 
+/// Pass 1 by the reference method: CGAL's box intersection, every pair judged exactly.
+FacePairs Analysis::reference_pairs() const {
+  // A face's box is that of the grid (face_pairs.hpp); its id is its face's address.
+  using Box = CGAL::Box_intersection_d::Box_with_handle_d<float, 3, const Face*,
+                                                          CGAL::Box_intersection_d::ID_FROM_HANDLE>;
+  FacePairs pairs;
+  pairs.parts.resize(parts_.size());
+  pairs.collinear.resize(faces_.size());
+  std::vector<Box> boxes;
+  for (std::uint32_t t = 0; t < faces_.size(); ++t) {
+    pairs.collinear[t] = collinear(t) ? 1 : 0;
+    if (pairs.collinear[t] != 0) continue;
+    FloatBox box = face_box(mesh_, t);
+    boxes.emplace_back(box.lo, box.hi, &faces_[t]);
+  }
+  pairs.deferred_faces = faces_.size();
+  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& a, const Box& b) {
+    const auto t = static_cast<std::uint32_t>(a.handle() - faces_.data());
+    const auto u = static_cast<std::uint32_t>(b.handle() - faces_.data());
+    ++pairs.candidates;
+    switch (judge(t, u)) {
+      case PairVerdict::kApart:
+        break;
+      case PairVerdict::kRepeated:
+        ++pairs.parts[triangle_part_[t]].repeated;
+        break;
+      case PairVerdict::kMirrored:
+        ++pairs.parts[triangle_part_[t]].mirrored;
+        break;
+      case PairVerdict::kCrossing:
+        ++pairs.parts[triangle_part_[t]].crossing;
+        break;
+      case PairVerdict::kMeeting:
+        ++pairs.meeting[std::minmax(triangle_part_[t], triangle_part_[u])];
+        break;
+    }
+  });
+  pairs.deferred = pairs.candidates;
+  return pairs;
+}
 /// The winding number of `part`'s faces (as wound) around `p`: +1 inside an outward part, -1
 /// inside an inward one, 0 outside; none when `p` is on its surface or every ray grazed an edge.
 std::optional<int> Analysis::winding(std::uint32_t part, const Point& p) const {
@@ -237,7 +265,7 @@ std::optional<int> Analysis::winding_around_part(std::uint32_t outer, std::uint3
   const std::size_t tries = std::min<std::size_t>(corners, 64);
   for (std::size_t i = 0; i < tries; ++i) {
     const std::size_t corner = i * corners / tries;
-    if (const auto w = winding(outer, points_[faces_[faces[corner / 3]][corner % 3]])) return w;
+    if (const auto w = winding(outer, point(faces_[faces[corner / 3]][corner % 3]))) return w;
   }
   return std::nullopt;
 }
@@ -254,7 +282,7 @@ const SurfaceMesh* Analysis::surface(std::uint32_t part) {
     std::vector<std::size_t>& polygon = polygons.emplace_back();
     for (const std::uint32_t v : faces_[f]) {
       const auto [it, fresh] = index.try_emplace(v, points.size());
-      if (fresh) points.push_back(points_[v]);
+      if (fresh) points.push_back(point(v));
       polygon.push_back(it->second);
     }
   }
@@ -338,59 +366,8 @@ void Analysis::judge_parts(std::uint32_t i, std::uint32_t j, PartOverlaps& out) 
   if (const auto w = winding_around_part(i, j); w && *w != 0) out.nesting.push_back({j, i, *w});
 }
 
-/// Pass 1 on two threads: the faces are split at the median of their boxes' low x; a pair
-/// whose boxes meet is tested by the half holding the larger of their low x, so once.
-void Analysis::find_face_pairs() {
-  std::vector<Box> boxes;
-  boxes.reserve(faces_.size());
-  for (std::uint32_t t = 0; t < faces_.size(); ++t) {
-    if (degenerate_[t]) continue;
-    const CGAL::Bbox_3 box = triangle(t).bbox();
-    float low[3], high[3];
-    for (int axis = 0; axis < 3; ++axis) {
-      low[axis] = std::nextafter(static_cast<float>(box.min(axis)), -INFINITY);
-      high[axis] = std::nextafter(static_cast<float>(box.max(axis)), INFINITY);
-    }
-    boxes.emplace_back(low, high, &faces_[t]);
-  }
-  std::vector<float> lows(boxes.size());
-  for (std::size_t i = 0; i < boxes.size(); ++i) lows[i] = boxes[i].min_coord(0);
-  const auto middle = lows.begin() + static_cast<std::ptrdiff_t>(lows.size() / 2);
-  std::nth_element(lows.begin(), middle, lows.end());
-  const float split = lows.empty() ? 0.0f : *middle;
-  std::vector<Box> upper;
-  for (const Box& box : boxes) {
-    if (box.max_coord(0) >= split) upper.push_back(box);
-  }
-  std::erase_if(boxes, [split](const Box& box) { return box.min_coord(0) >= split; });
-
-  const auto scan = [this, split](std::vector<Box>& half, bool is_upper, PairCounts& counts) {
-    counts.parts.resize(parts_.size());
-    CGAL::box_self_intersection_d(half.begin(), half.end(), [&](const Box& a, const Box& b) {
-      if ((std::max(a.min_coord(0), b.min_coord(0)) >= split) != is_upper) return;
-      test_pair(static_cast<std::uint32_t>(a.handle() - faces_.data()),
-                static_cast<std::uint32_t>(b.handle() - faces_.data()), counts);
-    });
-  };
-  PairCounts lower_counts, upper_counts;
-  std::future<void> other =
-      std::async(std::launch::async, [&] { scan(upper, true, upper_counts); });
-  scan(boxes, false, lower_counts);
-  other.get();
-  for (const PairCounts* counts : {&lower_counts, &upper_counts}) {
-    for (std::size_t i = 0; i < parts_.size(); ++i) {
-      parts_[i].repeated += counts->parts[i].repeated;
-      parts_[i].mirrored += counts->parts[i].mirrored;
-      parts_[i].crossing += counts->parts[i].crossing;
-    }
-    for (const auto& [pair, count] : counts->meeting) meeting_[pair] += count;
-  }
-}
-
-PartOverlaps Analysis::run() {
-  tally_parts();
-  find_face_pairs();
-  PartOverlaps out;
+/// The findings within each part.
+void Analysis::part_findings(PartOverlaps& out) const {
   for (std::uint32_t i = 0; i < parts_.size(); ++i) {
     const PartTally& part = parts_[i];
     OverlapFinding finding =
@@ -411,15 +388,51 @@ PartOverlaps Analysis::run() {
     }
     out.findings.push_back(finding);
   }
+}
+
+PartOverlaps Analysis::run(const OverlapOptions& options) {
+  PartOverlaps out;
+  bool found = false;
+  if (options.face_pairs) {
+    FacePairOptions search;
+    search.threads = std::max(1u, options.threads);
+    search.certify = options.method == FacePairMethod::kCertified;
+    search.filter = options.method != FacePairMethod::kExact;
+    FacePairs pairs = options.method == FacePairMethod::kReference
+                          ? reference_pairs()
+                          : find_face_pairs(mesh_, triangle_part_, parts_.size(), *this, search);
+    out.stats = {pairs.candidates, pairs.deferred, pairs.deferred_faces, pairs.regions,
+                 pairs.certified};
+    for (std::size_t i = 0; i < parts_.size(); ++i) {
+      parts_[i].repeated = pairs.parts[i].repeated;
+      parts_[i].mirrored = pairs.parts[i].mirrored;
+      parts_[i].crossing = pairs.parts[i].crossing;
+      found |= pairs.parts[i].repeated + pairs.parts[i].mirrored + pairs.parts[i].crossing > 0;
+    }
+    meeting_ = std::move(pairs.meeting);
+    degenerate_ = std::move(pairs.collinear);
+  } else if (parts_.size() > 1) {
+    degenerate_.resize(faces_.size());
+    for (std::uint32_t t = 0; t < faces_.size(); ++t) degenerate_[t] = collinear(t) ? 1 : 0;
+  }
+  // One part and nothing found in it: nothing more to judge.
+  if (parts_.size() < 2 && !found) return out;
+  tally_parts();
+  part_findings(out);
   if (parts_.size() < 2) return out;
 
-  // Part pairs whose boxes overlap, in order (the findings' order is the parts').
+  // Part pairs whose boxes overlap, in order (the findings' order is the parts'); parts whose
+  // boxes are disjoint are never compared.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> candidates;
   using PartBox =
       CGAL::Box_intersection_d::Box_with_handle_d<double, 3, const PartTally*,
                                                   CGAL::Box_intersection_d::ID_FROM_HANDLE>;
   std::vector<PartBox> part_boxes;
-  for (const PartTally& part : parts_) part_boxes.emplace_back(part.box, &part);
+  for (const PartTally& part : parts_) {
+    const Eigen::Vector3d &low = part.box.min(), &high = part.box.max();
+    part_boxes.emplace_back(CGAL::Bbox_3(low.x(), low.y(), low.z(), high.x(), high.y(), high.z()),
+                            &part);
+  }
   CGAL::box_self_intersection_d(
       part_boxes.begin(), part_boxes.end(), [&](const PartBox& a, const PartBox& b) {
         candidates.push_back(std::minmax(static_cast<std::uint32_t>(a.handle() - parts_.data()),
@@ -433,9 +446,10 @@ PartOverlaps Analysis::run() {
 }  // namespace
 
 PartOverlaps find_part_overlaps(const TriangleMesh& mesh,
-                                const std::vector<std::uint32_t>& triangle_part,
-                                std::size_t parts) {
-  return Analysis(mesh, triangle_part, parts).run();
+                                const std::vector<std::uint32_t>& triangle_part, std::size_t parts,
+                                const OverlapOptions& options) {
+  Analysis analysis(mesh, triangle_part, parts);
+  return analysis.run(options);
 }
 
 }  // namespace tumble::engine::detail

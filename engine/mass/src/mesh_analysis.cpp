@@ -12,6 +12,7 @@
 #include <cmath>
 #include <future>
 #include <sstream>
+#include <thread>
 
 #include "base/errors.hpp"
 #include "engine/geometry/mesh_topology.hpp"
@@ -305,8 +306,12 @@ void solid_properties(TriangleMesh& mesh, const Eigen::Vector3d& reference,
   require_closed_and_consistent(pass.topology, report.source);
   // Exact tests for parts that cross, nest, repeat or intersect themselves: an error unless
   // allowed (overlap_policy.hpp).
+  detail::OverlapOptions search;
+  search.threads =
+      options.jobs != 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
+  search.face_pairs = options.check_overlap;
   const detail::PartOverlaps overlaps =
-      detail::find_part_overlaps(mesh, pass.topology.triangle_part, pass.topology.parts);
+      detail::find_part_overlaps(mesh, pass.topology.triangle_part, pass.topology.parts, search);
   detail::OverlapPolicy policy(options.allow_overlap, report.source, pass.topology.parts);
   policy.findings(overlaps);
   policy.settle(report);

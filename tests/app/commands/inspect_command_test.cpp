@@ -181,6 +181,24 @@ TEST_F(InspectCommand, OverlappingPartsFailUnlessAllowed) {
   EXPECT_THAT(human.out, HasSubstr("note  parts 1 and 2 of 2 overlap"));
 }
 
+TEST_F(InspectCommand, SkippingTheOverlapChecksChangesNoCleanResultAndStillSeesNesting) {
+  // Two separate cubes: the same report, byte for byte.
+  testing::write_stl_file(path("apart.stl"), box_solid(1, 1, 1) + box_solid(1, 1, 1, 3, 0, 0));
+  const auto checked = run_command(tumble_executable() + " inspect --json " + path("apart.stl"));
+  const auto skipped = run_command(tumble_executable() + " inspect --skip-overlap-checks --json " +
+                                   path("apart.stl"));
+  ASSERT_EQ(skipped.status, 0) << skipped.err;
+  EXPECT_EQ(skipped.out, checked.out);
+  EXPECT_NEAR(nlohmann::json::parse(skipped.out).at("volume").get<double>(), 2.0, 1e-12);
+  // A cube inside a larger one, facing the same way: containment is still decided.
+  testing::write_stl_file(path("nested.stl"),
+                          box_solid(2, 2, 2) + box_solid(0.5, 0.5, 0.5, 0.25, 0.25, 0.25));
+  const auto nested =
+      run_command(tumble_executable() + " inspect --skip-overlap-checks " + path("nested.stl"));
+  EXPECT_EQ(nested.status, 1);
+  EXPECT_THAT(nested.err, HasSubstr("lies inside another part with the same orientation"));
+}
+
 TEST_F(InspectCommand, PartsStackedFaceToFaceAreNoOverlap) {
   testing::write_stl_file(path("stack.stl"),
                           box_solid(1, 1, 1) + box_solid(0.5, 0.5, 0.5, 0, 0, 0.75));

@@ -26,6 +26,13 @@ struct MassOptions {
   /// Accept parts that overlap, intersect themselves or repeat (their shared volume then
   /// counts twice, and a warning says how much); by default they are an error.
   bool allow_overlap = false;
+  /// Test the parts for self-intersections, repeated faces and crossings (exact; the default).
+  /// Off, none of them is found: self-intersections and repeats count without a warning, and
+  /// parts that cross may be taken as nested; whether a part lies inside another (a cavity, or
+  /// matter counted twice) is still decided.
+  bool check_overlap = true;
+  /// Threads for those tests; 0: one per core.
+  unsigned jobs = 0;
 };
 
 /// Everything `tumble inspect` reports about one mesh, in SI units after scaling.

@@ -1,0 +1,193 @@
+// A certificate by projection that no two faces of a set meet (region_certificate.hpp).
+#include "region_certificate.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+
+#include "certified_orientation.hpp"
+
+namespace tumble::engine::detail {
+namespace {
+
+constexpr std::uint64_t kNoBoundaryEdge = std::numeric_limits<std::uint64_t>::max();
+
+/// Whether (b - a) . (c - b) > 0 certainly: going on from b, not back. A sum of two products
+/// of rounded differences, as orient2d's terms, so its error is below 8 eps times the sum of
+/// their magnitudes (Shewchuk's analysis of orient2d, with one more rounding).
+bool certainly_onward(double au, double av, double bu, double bv, double cu, double cv) {
+  const double first = (bu - au) * (cu - bu), second = (bv - av) * (cv - bv);
+  return first + second > 0x1p-50 * (std::abs(first) + std::abs(second));
+}
+
+/// Where a vertex's cell lies from `cell`: bit a of the first mask when below along axis a,
+/// of the second when above.
+std::pair<unsigned, unsigned> side_of(const CellCoordinates& vertex, const CellCoordinates& cell) {
+  unsigned below = 0, above = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    below |= (vertex[axis] < cell[axis] ? 1u : 0u) << axis;
+    above |= (vertex[axis] > cell[axis] ? 1u : 0u) << axis;
+  }
+  return {below, above};
+}
+
+}  // namespace
+
+/// The projection: along the axis of the largest component of the summed normals of up to 64
+/// of the faces, facing its way (all of them when that fails); then every face must project
+/// with certainly positive orientation (the normal's component along the axis is an orient2d
+/// of the projected corners, certified with Shewchuk's bound).
+bool RegionCertificate::project_positively(std::span<const std::uint32_t> faces) {
+  const std::size_t step = std::max<std::size_t>(1, faces.size() / 64);
+  for (const std::size_t stride : {step, std::size_t{1}}) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < faces.size(); i += stride) {
+      const auto& t = mesh_.triangles[faces[i]];
+      const Eigen::Vector3d& o = mesh_.positions[t[0]];
+      sum += (mesh_.positions[t[1]] - o).cross(mesh_.positions[t[2]] - o);
+    }
+    int axis = 0;
+    sum.cwiseAbs().maxCoeff(&axis);
+    if (!(std::abs(sum[axis]) > 0.0)) return false;
+    // (u, v, axis) right-handed: counter-clockwise in (u, v) is a normal along +axis.
+    axis_u_ = (axis + 1) % 3;
+    axis_v_ = (axis + 2) % 3;
+    if (sum[axis] < 0.0) std::swap(axis_u_, axis_v_);
+    if (all_positive(faces)) return true;
+    if (stride == 1) return false;
+  }
+  return false;
+}
+
+bool RegionCertificate::all_positive(std::span<const std::uint32_t> faces) const {
+  for (const std::uint32_t f : faces) {
+    const auto& t = mesh_.triangles[f];
+    if (!cells_.in_filter_range(t[0]) || !cells_.in_filter_range(t[1]) ||
+        !cells_.in_filter_range(t[2]) ||
+        certified_orientation_2d(u(t[1]), v(t[1]), u(t[2]), v(t[2]), u(t[0]), v(t[0])) <= 0) {
+      return false;
+    }
+  }
+  return true;
+}
+
+/// The boundary chain: the uses of each edge leaving the cell, +1 from its smaller vertex, -1
+/// from its larger; what does not cancel is the boundary, which must be single (net +-1).
+bool RegionCertificate::find_boundary(std::span<const std::uint32_t> faces,
+                                      const CellCoordinates& cell) {
+  // An edge spans the cell unless both its vertices lie below it, or both above, along an axis.
+  boundary_.clear();
+  for (const std::uint32_t f : faces) {
+    if (cells_.in_one_cell(f)) continue;  // its edges lie in the cell
+    const auto& t = mesh_.triangles[f];
+    const auto [below0, above0] = side_of(cells_.vertex_cell(t[0]), cell);
+    const auto [below1, above1] = side_of(cells_.vertex_cell(t[1]), cell);
+    const auto [below2, above2] = side_of(cells_.vertex_cell(t[2]), cell);
+    if ((below0 | below1 | below2 | above0 | above1 | above2) == 0) continue;
+    const unsigned below[3] = {below0, below1, below2}, above[3] = {above0, above1, above2};
+    for (int corner = 0; corner < 3; ++corner) {
+      const int next = corner == 2 ? 0 : corner + 1;
+      if ((below[corner] & below[next]) != 0 || (above[corner] & above[next]) != 0) {
+        boundary_.push_back({t[corner], t[next]});
+      }
+    }
+  }
+  const std::size_t size = std::bit_ceil(std::max<std::size_t>(8, 2 * boundary_.size()));
+  const int shift = 64 - std::countr_zero(size);
+  slots_.assign(size, Slot{kNoBoundaryEdge, 0});
+  for (const Edge& edge : boundary_) {
+    const std::uint64_t key =
+        std::uint64_t{std::min(edge.from, edge.to)} << 32 | std::max(edge.from, edge.to);
+    std::size_t slot = (key * 0x9e3779b97f4a7c15ull) >> shift;
+    while (slots_[slot].key != key && slots_[slot].key != kNoBoundaryEdge)
+      slot = (slot + 1) & (size - 1);
+    slots_[slot].key = key;
+    slots_[slot].uses += edge.from < edge.to ? 1 : -1;
+  }
+  boundary_.clear();
+  for (const Slot& slot : slots_) {
+    if (slot.uses == 0) continue;
+    if (slot.uses != 1 && slot.uses != -1) return false;
+    const auto low = static_cast<std::uint32_t>(slot.key >> 32);
+    const auto high = static_cast<std::uint32_t>(slot.key);
+    boundary_.push_back(slot.uses == 1 ? Edge{low, high} : Edge{high, low});
+  }
+  return boundary_.size() >= 3;
+}
+
+/// The boundary as one closed loop of vertices: each vertex starts one edge, and following
+/// them from any edge visits all.
+bool RegionCertificate::trace_loop() {
+  const auto by_start = [](const Edge& a, const Edge& b) { return a.from < b.from; };
+  std::sort(boundary_.begin(), boundary_.end(), by_start);
+  for (std::size_t i = 1; i < boundary_.size(); ++i) {
+    if (boundary_[i].from == boundary_[i - 1].from) return false;
+  }
+  loop_.clear();
+  const std::uint32_t start = boundary_.front().from;
+  Edge edge = boundary_.front();
+  do {
+    loop_.push_back(edge.from);
+    const auto next =
+        std::lower_bound(boundary_.begin(), boundary_.end(), Edge{edge.to, 0}, by_start);
+    if (next == boundary_.end() || next->from != edge.to) return false;
+    edge = *next;
+  } while (edge.from != start && loop_.size() < boundary_.size());
+  return edge.from == start && loop_.size() == boundary_.size();
+}
+
+/// Whether the projected loop is a simple polygon: consecutive edges meet only where they
+/// join (they turn, or go on along one line), and edges that are not consecutive are certainly
+/// apart. Pairs are found by a sweep along u over the edges' boxes (exact coordinates, so the
+/// boxes are exact too).
+bool RegionCertificate::loop_is_simple() {
+  const std::size_t m = loop_.size();
+  plane_.resize(2 * m);
+  for (std::size_t i = 0; i < m; ++i) {
+    plane_[2 * i] = u(loop_[i]);
+    plane_[2 * i + 1] = v(loop_[i]);
+  }
+  const auto pu = [&](std::size_t i) { return plane_[2 * (i % m)]; };
+  const auto pv = [&](std::size_t i) { return plane_[2 * (i % m) + 1]; };
+  const auto orient = [&](std::size_t a, std::size_t b, std::size_t c) {
+    return certified_orientation_2d(pu(a), pv(a), pu(b), pv(b), pu(c), pv(c));
+  };
+  for (std::size_t i = 0; i < m; ++i) {
+    const std::size_t a = i + m - 1, b = i, c = i + 1;
+    if (orient(a, b, c) == 0 && !certainly_onward(pu(a), pv(a), pu(b), pv(b), pu(c), pv(c))) {
+      return false;
+    }
+  }
+  order_.resize(m);
+  for (std::size_t i = 0; i < m; ++i) order_[i] = static_cast<std::uint32_t>(i);
+  const auto low_u = [&](std::size_t i) { return std::min(pu(i), pu(i + 1)); };
+  std::sort(order_.begin(), order_.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return low_u(a) < low_u(b); });
+  active_.clear();
+  for (const std::uint32_t i : order_) {
+    const double low = low_u(i);
+    std::erase_if(active_, [&](std::uint32_t j) { return std::max(pu(j), pu(j + 1)) < low; });
+    for (const std::uint32_t j : active_) {
+      if ((i + 1) % m == j || (j + 1) % m == i) continue;  // consecutive: checked above
+      if (std::max(pv(i), pv(i + 1)) < std::min(pv(j), pv(j + 1)) ||
+          std::max(pv(j), pv(j + 1)) < std::min(pv(i), pv(i + 1))) {
+        continue;
+      }
+      const int first = orient(i, i + 1, j), second = orient(i, i + 1, j + 1);
+      if (first != 0 && first == second) continue;
+      const int third = orient(j, j + 1, i), fourth = orient(j, j + 1, i + 1);
+      if (third != 0 && third == fourth) continue;
+      return false;
+    }
+    active_.push_back(i);
+  }
+  return true;
+}
+
+bool RegionCertificate::certify(std::span<const std::uint32_t> faces, const CellCoordinates& cell) {
+  return !faces.empty() && project_positively(faces) && find_boundary(faces, cell) &&
+         trace_loop() && loop_is_simple();
+}
+
+}  // namespace tumble::engine::detail
