@@ -1,7 +1,8 @@
 // The viewer's frame at 1280x720 on the T-handle demo, without the window: the simulation
 // stepped by one 60 Hz frame of wall time, the draw list, the 3D passes, the scene's overlay and
 // the viewer's ImGui panels, read back. What SDL adds (texture upload and present) is measured
-// by `tumble view --stats` under Xvfb (docs/performance.md, Viewer). The `fps` counter is frames per wall second.
+// by `tumble view --stats` under Xvfb (docs/performance.md, Viewer). The `fps` counter is frames
+// per wall second.
 //   BM_ViewerFrame          everything above (the figure the 60 frames/s is about)
 //   BM_ViewerFrameNoPanels  the same without the ImGui panels
 //   BM_ViewerStepOnly       only the simulation's share (1/60 s of the demo's rk4 steps)
