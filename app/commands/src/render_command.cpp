@@ -119,8 +119,8 @@ CLI::App& add_render_command(CLI::App& cli, RenderOptions& options) {
   render
       .add_option_function<std::string>(
           "--aa", [&](const std::string& value) { options.antialiasing = value; },
-          "Anti-aliasing: fxaa (default; a post-process filter, ~1.15x the time), off, or "
-          "multisampling with N samples per pixel (2-16, 4 max on llvmpipe, ~2x the time)")
+          "Anti-aliasing: fxaa (default; a post-process filter, 1.05-1.3x the time), off, or "
+          "multisampling with N samples per pixel (2-16, 4 max on llvmpipe, ~2.3x the time)")
       ->type_name("fxaa|off|N");
   render.add_flag("--no-overlay", options.no_overlay,
                   "No text or plots: title, integrator, time and drift plots are left out");
