@@ -41,4 +41,8 @@ measure() {
 }
 measure "inspect cube.stl (tumble's reader)" "$tumble" inspect "$dir/cube.stl"
 measure "inspect cube.obj (assimp)" "$tumble" inspect "$dir/cube.obj"
+# The same with the worker's heap in 4 KiB pages only (the worker advises huge pages for malloc's
+# large blocks unless GLIBC_TUNABLES is set): what the tunable saves.
+measure "inspect cube.obj (no huge pages)" env GLIBC_TUNABLES=glibc.malloc.hugetlb=0 \
+  "$tumble" inspect "$dir/cube.obj"
 measure "--help" "$tumble" --help
