@@ -288,11 +288,15 @@ ViewerWindow::ViewerWindow(const ViewOptions& options, SdlWindow& window, Window
 bool ViewerWindow::run(const InterruptGuard& guard) {
   start_ = Clock::now();
   Clock::time_point last = start_;
-  for (;;) {
+  for (std::size_t frames = 0;; ++frames) {
     if (guard.interrupted()) return false;
     const Clock::time_point now = Clock::now();
-    const double wall = seconds_between(last, now);
-    const double since_start = seconds_between(start_, now);
+    // The viewer's clock: the wall clock, or with --frame-clock the frames drawn so far.
+    const double wall = options_.frame_clock ? (frames == 0 ? 0.0 : 1.0 / viewer::kRecordFps)
+                                             : seconds_between(last, now);
+    const double since_start = options_.frame_clock
+                                   ? static_cast<double>(frames) / viewer::kRecordFps
+                                   : seconds_between(start_, now);
     last = now;
     handle_input(since_start);
     // A quit still draws this frame, so screenshots asked for with it are written.
