@@ -52,8 +52,12 @@ CLI::App& add_view_command(CLI::App& cli, ViewOptions& options) {
                 "counts twice), as with tumble inspect --allow-overlap");
   view.add_option_function<double>(
           "--exit-after", [&](double value) { options.exit_after = value; },
-          "Quit after S seconds of wall time")
+          "Quit after S seconds of wall time (of frames with --frame-clock)")
       ->type_name("S");
+  view.add_flag("--frame-clock", options.frame_clock,
+                "Time by frames drawn, not the wall clock: every frame is 1/30 s of the viewer's "
+                "time however long it takes (script times, the simulation, recordings, "
+                "--exit-after), so a scripted run is the same on a loaded machine");
   view.add_flag("--stats", options.stats,
                 "On exit, print frames drawn, frames per second and the frame-time median and "
                 "95th percentile, then the last frame's window size, text size and panel width");

@@ -1,4 +1,5 @@
-// The registry of part kinds, and merge by the first part's kind.
+// The registry of part kinds, and merge: every part checked by its kind, then merged by the
+// first part's kind.
 #include "app/farm/part_kind.hpp"
 
 #include <stdexcept>
@@ -37,6 +38,9 @@ MergeOutcome merge_parts(const PartKinds& kinds, const std::vector<std::filesyst
   std::vector<NamedManifest> read;
   for (const std::filesystem::path& part : parts) read.push_back({part, read_part_manifest(part)});
   if (read.empty()) throw InputError("no parts to merge");
+  // Each part checked on its own by its kind before any merging starts: a truncated or
+  // mismatched part is named before the output is opened.
+  for (const NamedManifest& part : read) kinds.of(part).check(part);
   return kinds.of(read.front()).merge(read, output, interrupted);
 }
 

@@ -1,11 +1,26 @@
-// A running render: the compiled scene, its simulation, the renderer and the frame builder.
+// A running render: the compiled scene, its simulation, the renderer and the frame builder;
+// and `tumble render`'s whole job over it.
+//
+// Order of work, so that mistakes cost nothing: options and scene are checked, then the output
+// is opened (an unwritable directory, an unknown extension or a missing ffmpeg fail before any
+// mesh is read), then meshes are imported and frames rendered. The sinks write to a temporary
+// name and rename on finish(); every failure or interruption destroys the sink unfinished,
+// which removes the temporary, so nothing half-written is ever left under the output name.
+#include <chrono>
 #include <optional>
+#include <ostream>
 #include <stdexcept>
 
+#include "app/analysis/blow_up.hpp"
 #include "app/frame/frame_builder.hpp"
+#include "app/support/exit_status.hpp"
+#include "app/support/printf_number.hpp"
+#include "app/support/progress_bar.hpp"
 #include "app/video/render_job.hpp"
+#include "app/video/video_part.hpp"
 #include "base/errors.hpp"
 #include "engine/simulation/simulation.hpp"
+#include "media/image_sink.hpp"
 #include "render/renderer.hpp"
 
 namespace tumble::app {
@@ -109,6 +124,74 @@ render::DrawList RenderJob::build() const {
 
 const engine::Simulation& RenderJob::simulation() const {
   return *impl_->simulation;
+}
+
+namespace {
+
+/// Visits every frame time from 0 to the range's end, drawing and writing the frames of the
+/// range; stops early when `interrupted` says so (then returns false).
+bool write_render_frames(RenderJob& job, FrameRange range, media::ImageSink& sink,
+                         const std::function<bool()>& interrupted, std::ostream& err,
+                         bool progress) {
+  ProgressBar bar(err, range.end - range.first, "frames", progress);
+  Image image;
+  for (std::size_t frame = 0; frame < range.end; ++frame) {
+    if (interrupted && interrupted()) return false;
+    job.advance_to(frame);  // cheap for frames before the range: step and observe
+    if (frame < range.first) continue;
+    job.draw(image);
+    sink.write_taking(image);  // the next draw fills a recycled buffer: no copy per frame
+    bar.update(frame + 1 - range.first);
+  }
+  bar.clear();
+  return true;
+}
+
+void print_render_summary(const RenderOptions& options, std::size_t frames, double seconds,
+                          std::ostream& out) {
+  out << "tumble render: " << frames << (frames == 1 ? " frame" : " frames") << " written to '"
+      << options.output.string() << "' in " << printf_number(seconds, "%.2f") << " s ("
+      << printf_number(seconds > 0.0 ? static_cast<double>(frames) / seconds : 0.0, "%.1f")
+      << " frames/s)\n";
+}
+
+}  // namespace
+
+int write_render(const RenderOptions& options, const std::function<bool()>& interrupted,
+                 std::ostream& out, std::ostream& err, bool progress) {
+  const auto start = std::chrono::steady_clock::now();
+
+  // Options and scene, then the output: both fail before any mesh is read.
+  RenderPlan plan = plan_render(options);  // a --shard narrows plan.frames to its part
+  nlohmann::json job_options = frame_settings_json(plan.settings);
+  job_options["integrator"] = plan.scene.integrator;
+  job_options["dt"] = plan.scene.dt;
+  const std::string manifest = shard_video_frames(options, "render", plan.scene, plan.total_frames,
+                                                  job_options, plan.frames);
+  std::unique_ptr<media::ImageSink> sink = open_render_output(
+      options, plan.settings, plan.frames.first, scene_inputs(plan.scene), manifest);
+
+  // Meshes, simulation, renderer; then the frames.
+  RenderJob job(plan);
+  if (!write_render_frames(job, plan.frames, *sink, interrupted, err, progress)) {
+    sink.reset();  // removes the temporary
+    return kExitInterrupted;
+  }
+  sink->finish();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  // A blow-up still gives a whole video (the last good state held), with a warning and status 3.
+  int status = 0;
+  const engine::Simulation& simulation = job.simulation();
+  if (simulation.blow_up()) {
+    err << "tumble render: warning: blow-up: " << describe_blow_up(simulation)
+        << "; later frames hold the last good state (t = "
+        << printf_number(simulation.time(), "%.9g") << " s)\n";
+    status = kExitBlowUp;
+  }
+  if (!options.quiet) print_render_summary(options, sink->frames(), seconds, out);
+  return status;
 }
 
 }  // namespace tumble::app

@@ -5,6 +5,8 @@
 // or an interruption removes the folder, so nothing is left under the output's name.
 #include "app/video_parts/video_merge.hpp"
 
+#include <cstring>
+#include <fstream>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -85,13 +87,35 @@ media::JoinInput video_job(const std::vector<NamedManifest>& parts,
   return video;
 }
 
-/// Checks that a PNG part holds exactly its frames' files.
+/// Whether `file` begins with the PNG signature and ends with the IEND chunk (its CRC
+/// included): a whole file as the sinks write it, not one cut short (RFC 2083, 3.1 and 4.1.4).
+bool whole_png_file(const fs::path& file) {
+  static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  static constexpr unsigned char kEnd[12] = {0,   0,   0,    0,    'I',  'E',
+                                             'N', 'D', 0xAE, 0x42, 0x60, 0x82};
+  std::ifstream in(file, std::ios::binary);
+  char head[8] = {}, tail[12] = {};
+  if (!in.read(head, sizeof head)) return false;
+  in.seekg(-static_cast<std::streamoff>(sizeof tail), std::ios::end);
+  if (!in.read(tail, sizeof tail)) return false;
+  return std::memcmp(head, kSignature, sizeof head) == 0 &&
+         std::memcmp(tail, kEnd, sizeof tail) == 0;
+}
+
+/// Checks that a PNG part holds exactly its frames' files, each a whole PNG file.
 void check_png_part(const media::JoinPiece& piece) {
   for (std::size_t frame = piece.first; frame < piece.end; ++frame) {
     std::error_code error;
-    if (!fs::is_regular_file(piece.path / media::frame_file_name(frame), error)) {
+    const fs::path file = piece.path / media::frame_file_name(frame);
+    if (!fs::is_regular_file(file, error)) {
       throw InputError(piece.path.string() + ": " + media::frame_file_name(frame) +
                        " missing (the part is frames " + range_text(piece.first, piece.end) + ")");
+    }
+    if (!whole_png_file(file)) {
+      throw InputError(file.string() +
+                       ": not a whole PNG file (cut short?); render the part of "
+                       "frames " +
+                       range_text(piece.first, piece.end) + " again");
     }
   }
   std::error_code error;

@@ -288,11 +288,18 @@ ViewerWindow::ViewerWindow(const ViewOptions& options, SdlWindow& window, Window
 bool ViewerWindow::run(const InterruptGuard& guard) {
   start_ = Clock::now();
   Clock::time_point last = start_;
+  std::size_t drawn = 0;  // frames drawn: the --frame-clock's ticks
   for (;;) {
     if (guard.interrupted()) return false;
     const Clock::time_point now = Clock::now();
-    const double wall = seconds_between(last, now);
-    const double since_start = seconds_between(start_, now);
+    // The viewer's clock: the wall clock, or with --frame-clock the frames drawn so far (a
+    // hidden or minimised window, drawing nothing, stops that clock).
+    const double wall = !options_.frame_clock ? seconds_between(last, now)
+                        : drawn == 0          ? 0.0
+                                              : 1.0 / viewer::kRecordFps;
+    const double since_start = options_.frame_clock
+                                   ? static_cast<double>(drawn) / viewer::kRecordFps
+                                   : seconds_between(start_, now);
     last = now;
     handle_input(since_start);
     // A quit still draws this frame, so screenshots asked for with it are written.
@@ -300,9 +307,11 @@ bool ViewerWindow::run(const InterruptGuard& guard) {
         viewer_.quit_requested() || (options_.exit_after && since_start >= *options_.exit_after);
     if (follow_window_size()) {
       draw_frame(wall);
+      ++drawn;
       frame_clock_.add(seconds_between(now, Clock::now()));
     } else {
-      viewer_.update(wall);  // minimised: the clock goes on, nothing is drawn
+      // Minimised: the wall clock goes on (the frame clock does not), nothing is drawn.
+      viewer_.update(options_.frame_clock ? 0.0 : wall);
       SDL_Delay(20);
     }
     if (last_frame) break;

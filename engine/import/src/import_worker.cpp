@@ -50,18 +50,6 @@ constexpr double kStalledCpuSeconds = 1.0;
 /// Answers of this thread still mapped (run_in_worker refuses a request while one is).
 thread_local int live_answers = 0;
 
-bool send_all(int fd, const void* data, std::size_t size) {
-  const auto* p = static_cast<const char*>(data);
-  while (size > 0) {
-    const ssize_t n = ::send(fd, p, size, MSG_NOSIGNAL);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    p += n;
-    size -= static_cast<std::size_t>(n);
-  }
-  return true;
-}
-
 /// How a worker ended: its wait status, whether it was killed for exceeding the wall-clock
 /// deadline, and the CPU time the file used (the limit's SIGKILL is told from the kernel's by
 /// it).

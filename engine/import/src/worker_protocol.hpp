@@ -16,6 +16,11 @@
 // 8-byte aligned in a mapping of the file), then the payload: for kAnswer the task's bytes,
 // for the others one text.
 
+#include <sys/socket.h>
+#include <sys/types.h>
+
+#include <cerrno>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -59,6 +64,20 @@ void append_bytes(std::string& out, const T& value) {
 inline void append_text(std::string& out, const std::string& text) {
   append_bytes(out, std::uint64_t{text.size()});
   out += text;
+}
+
+/// Sends all `size` bytes at `data` on the socket `fd` (again after a signal, never raising
+/// SIGPIPE); false when the peer is gone or the socket fails.
+inline bool send_all(int fd, const void* data, std::size_t size) {
+  const auto* p = static_cast<const char*>(data);
+  while (size > 0) {
+    const ssize_t n = ::send(fd, p, size, MSG_NOSIGNAL);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    p += n;
+    size -= static_cast<std::size_t>(n);
+  }
+  return true;
 }
 
 }  // namespace tumble::engine::detail

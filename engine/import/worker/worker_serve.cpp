@@ -31,18 +31,6 @@ namespace {
 /// Writes smaller than this go through the buffer.
 constexpr std::size_t kAnswerBuffer = std::size_t{1} << 16;
 
-bool send_all(int fd, const void* data, std::size_t size) {
-  const auto* p = static_cast<const char*>(data);
-  while (size > 0) {
-    const ssize_t n = ::send(fd, p, size, MSG_NOSIGNAL);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    p += n;
-    size -= static_cast<std::size_t>(n);
-  }
-  return true;
-}
-
 bool receive_all(int fd, void* data, std::size_t size) {
   auto* p = static_cast<char*>(data);
   while (size > 0) {

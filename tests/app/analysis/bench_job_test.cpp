@@ -7,46 +7,23 @@
 
 #include <cmath>
 
-#include "app/analysis/simulation_run.hpp"
 #include "base/errors.hpp"
-#include "engine/simulation/reference_motion.hpp"
 #include "support/command_test.hpp"
 #include "support/scene_builder.hpp"
+#include "support/torque_free_brick.hpp"
 
 namespace tumble::app {
 namespace {
 
 using ::testing::HasSubstr;
 
-/// A free asymmetric body tumbling near its intermediate axis, torque-free.
-nlohmann::json bench_brick_scene() {
-  return testing::SceneBuilder()
-      .duration(0.5)
-      .dt(0.01)
-      .integrator("rk4")
-      .body(testing::BodyBuilder("brick").angular_velocity({0.01, 3.0, 0.01}, "body"))
-      .json();
-}
-
-/// The geodesic angle at `duration` between a run of `integrator` at `dt` (made by the simulate
-/// library, not the bench) and the engine's exact torque-free solution.
-double exact_final_error(const std::filesystem::path& scene, const std::string& integrator,
-                         double dt) {
-  SimulateOptions options;
-  options.scene = scene;
-  options.integrator = integrator;
-  options.dt = dt;
-  const Trajectory trajectory = run_simulation(options);
-  const engine::ReferenceMotion exact(trajectory.bodies, trajectory.states.front());
-  return engine::orientation_angle(exact.at(trajectory.times.back()).front().orientation,
-                                   trajectory.states.back().front().orientation);
-}
+using testing::exact_final_error;
 
 class BenchJob : public testing::CommandTest {};
 
 TEST_F(BenchJob, RowsAreTheErrorsAgainstTheExactSolutionAndShowFourthOrder) {
   BenchOptions options;
-  options.scenes = {write_scene(bench_brick_scene())};
+  options.scenes = {write_scene(testing::torque_free_brick_scene())};
   options.integrators = "rk4";
   options.dts = "0.02,0.01";
   options.repeat = "1";
@@ -74,7 +51,7 @@ TEST_F(BenchJob, RowsAreTheErrorsAgainstTheExactSolutionAndShowFourthOrder) {
 
 TEST_F(BenchJob, ShardRunsEveryNthCaseOfThePlan) {
   BenchOptions options;
-  options.scenes = {write_scene(bench_brick_scene())};
+  options.scenes = {write_scene(testing::torque_free_brick_scene())};
   options.integrators = "rk4,midpoint";
   options.dts = "0.02,0.01";
   options.repeat = "1";
@@ -92,7 +69,7 @@ TEST_F(BenchJob, ShardRunsEveryNthCaseOfThePlan) {
 
 TEST_F(BenchJob, BadRepeatIsAnInputErrorNamingIt) {
   BenchOptions options;
-  options.scenes = {write_scene(bench_brick_scene())};
+  options.scenes = {write_scene(testing::torque_free_brick_scene())};
   options.repeat = "0";
   try {
     bench_settings(options);
@@ -104,7 +81,7 @@ TEST_F(BenchJob, BadRepeatIsAnInputErrorNamingIt) {
 
 TEST_F(BenchJob, StoppedRunGivesNoRows) {
   BenchOptions options;
-  options.scenes = {write_scene(bench_brick_scene())};
+  options.scenes = {write_scene(testing::torque_free_brick_scene())};
   options.integrators = "rk4";
   options.dts = "0.01";
   options.repeat = "1";

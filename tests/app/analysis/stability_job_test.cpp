@@ -8,45 +8,21 @@
 
 #include <sstream>
 
-#include "app/analysis/simulation_run.hpp"
 #include "base/errors.hpp"
-#include "engine/simulation/reference_motion.hpp"
 #include "support/command_test.hpp"
 #include "support/scene_builder.hpp"
+#include "support/torque_free_brick.hpp"
 
 namespace tumble::app {
 namespace {
 
 using ::testing::HasSubstr;
 
-/// A free asymmetric body tumbling near its intermediate axis, torque-free.
-nlohmann::json sweep_brick_scene() {
-  return testing::SceneBuilder()
-      .duration(0.5)
-      .dt(0.01)
-      .integrator("rk4")
-      .body(testing::BodyBuilder("brick").angular_velocity({0.01, 3.0, 0.01}, "body"))
-      .json();
-}
-
-/// The geodesic angle at the end between a simulate-library run of rk4 at `dt` and the engine's
-/// exact torque-free solution.
-double rk4_final_error(const std::filesystem::path& scene, double dt) {
-  SimulateOptions options;
-  options.scene = scene;
-  options.integrator = "rk4";
-  options.dt = dt;
-  const Trajectory trajectory = run_simulation(options);
-  const engine::ReferenceMotion exact(trajectory.bodies, trajectory.states.front());
-  return engine::orientation_angle(exact.at(trajectory.times.back()).front().orientation,
-                                   trajectory.states.back().front().orientation);
-}
-
 class StabilityJob : public testing::CommandTest {};
 
 TEST_F(StabilityJob, SceneCaseRowsComeInSweepOrderAndBoundTheExactError) {
   StabilityOptions options;
-  options.scenes = {write_scene(sweep_brick_scene())};
+  options.scenes = {write_scene(testing::torque_free_brick_scene())};
   options.integrators = "rk4";
   options.dts = "0.01,0.02";
   const std::vector<StabilityRun> runs = run_stability_rows(options);
@@ -59,7 +35,7 @@ TEST_F(StabilityJob, SceneCaseRowsComeInSweepOrderAndBoundTheExactError) {
     EXPECT_EQ(run.steps, run.total_steps);
     ASSERT_TRUE(run.orientation_error);
     // The largest error over the compared instants, the end among them.
-    const double final_error = rk4_final_error(options.scenes[0], run.dt);
+    const double final_error = testing::exact_final_error(options.scenes[0], "rk4", run.dt);
     EXPECT_GE(*run.orientation_error, final_error * (1.0 - 1e-9));
     EXPECT_LT(*run.orientation_error, 1e-4);
   }
@@ -69,7 +45,7 @@ TEST_F(StabilityJob, SceneCaseRowsComeInSweepOrderAndBoundTheExactError) {
 
 TEST_F(StabilityJob, ShardKeepsEveryNthRunOfTheSweep) {
   StabilityOptions options;
-  options.scenes = {write_scene(sweep_brick_scene())};
+  options.scenes = {write_scene(testing::torque_free_brick_scene())};
   options.integrators = "rk4,midpoint";
   options.dts = "0.01,0.02";
   options.shard = "1/2";
@@ -84,7 +60,7 @@ TEST_F(StabilityJob, ShardKeepsEveryNthRunOfTheSweep) {
 
 TEST_F(StabilityJob, UnknownIntegratorIsAnInputErrorNamingIt) {
   StabilityOptions options;
-  options.scenes = {write_scene(sweep_brick_scene())};
+  options.scenes = {write_scene(testing::torque_free_brick_scene())};
   options.integrators = "rk5";
   try {
     run_stability_rows(options);

@@ -23,7 +23,6 @@
 namespace tumble::app {
 namespace {
 
-using nlohmann::json;
 using ::testing::HasSubstr;
 using tumble::testing::fresh_directory;
 using tumble::testing::read_text;
@@ -34,7 +33,7 @@ using Csv = testing::CsvTable;
 using testing::read_csv;
 
 /// An asymmetric torque-free body, I = (1, 2, 3), w_body = (0.4, 0.8, 0.6).
-json torque_free_scene() {
+nlohmann::json torque_free_scene() {
   return testing::SceneBuilder()
       .name("brick")
       .duration(4.0)
@@ -307,7 +306,7 @@ TEST_F(BenchCommand, TwoJobsGiveTheSameErrorsAsOne) {
 
 TEST_F(BenchCommand, ForcedSceneUsesTheCheckedDopriReference) {
   const auto dir = fresh_directory("bench_forced");
-  json top = torque_free_scene();
+  nlohmann::json top = torque_free_scene();
   top["gravity"] = {0, 0, -9.81};
   top["bodies"][0]["pivot"] = {0, 0, -0.1};
   top["duration"] = 1.0;
@@ -329,7 +328,7 @@ TEST_F(BenchCommand, ForcedSceneUsesTheCheckedDopriReference) {
 // does not divide the largest step 0.001".
 TEST_F(BenchCommand, AdaptiveIntegratorsAloneNeedNoSteps) {
   const auto dir = fresh_directory("bench_adaptive");
-  json scene = torque_free_scene();
+  nlohmann::json scene = torque_free_scene();
   scene["absolute_tolerance"] = 0.0;
   std::ofstream(dir / "brick.json") << scene.dump(2);
   const auto run = bench("'" + (dir / "brick.json").string() +

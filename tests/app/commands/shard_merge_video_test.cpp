@@ -371,5 +371,34 @@ TEST_F(ShardMergeVideo, BadShardsAndIncompletePartsAreOneLineErrors) {
   EXPECT_TRUE(hidden_entries().empty());
 }
 
+TEST_F(ShardMergeVideo, APartCutShortIsRefusedByItsCheckBeforeAnythingIsWritten) {
+  // merge checks every part (PartKind::check) before merging: a frame cut short is named.
+  render_parts("render", "--size 320x180 --aa off --frames 0:4", "full/", "/", 2);
+  const std::filesystem::path cut = dir_ / "part-0" / png_name(1);
+  std::filesystem::resize_file(cut, std::filesystem::file_size(cut) - 5);
+  for (const std::string out : {"m.mp4", "m/"}) {
+    const CommandResult merged = tumble("merge" + parts("/", {1, 0}) + " -o " + path(out));
+    EXPECT_EQ(merged.status, 1);
+    EXPECT_EQ(merged.err, "tumble merge: error: " + cut.string() +
+                              ": not a whole PNG file (cut short?); render the part of frames "
+                              "0:2 again\n");
+    EXPECT_EQ(merged.out, "");
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "m.mp4"));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "m"));
+  EXPECT_TRUE(hidden_entries().empty());
+
+  // A segment cut short: ffprobe's count differs or it cannot read the file; the part is named.
+  render_parts("render", "--size 320x180 --aa off --frames 0:4 --fps 1", "full.mp4", ".mp4", 2);
+  const std::filesystem::path segment = dir_ / "part-1.mp4";
+  std::filesystem::resize_file(segment, std::filesystem::file_size(segment) / 2);
+  const CommandResult merged = tumble("merge" + parts(".mp4", {0, 1}) + " -o " + path("m.mp4"));
+  EXPECT_EQ(merged.status, 1);
+  EXPECT_THAT(merged.err, ::testing::StartsWith("tumble merge: error: " + segment.string() + ": "));
+  EXPECT_EQ(std::count(merged.err.begin(), merged.err.end(), '\n'), 1) << merged.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "m.mp4"));
+  EXPECT_TRUE(hidden_entries().empty());
+}
+
 }  // namespace
 }  // namespace tumble::app

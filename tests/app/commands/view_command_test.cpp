@@ -123,9 +123,11 @@ TEST_F(ViewCommand, DrawsTheBodyAndThePanelsAndSpacePauses) {
       "2.5 key space\n"
       "2.9 screenshot resumed.png\n"
       "3.0 quit\n",
-      "'" + demo() + "'");
+      "--frame-clock '" + demo() + "'");
   ASSERT_EQ(result.status, 0) << result.err;
 
+  // The script's times are on the viewer's frame clock (frame 30, 42, ...): however slowly the
+  // machine draws, 12 frames of 1/30 s of simulation lie between the two playing screenshots.
   // The body is drawn in the view and the control panel on the right, not over the view.
   const tumble::Image playing1 = shot("playing1.png");
   expect_body_and_panel(playing1);
@@ -187,16 +189,18 @@ TEST_F(ViewCommand, CtrlPWritesAScreenshotAndCtrlRRecordsAVideo) {
       "2.5 key ctrl+r\n"
       "2.7 key ctrl+p\n"
       "3.0 quit\n",
-      "'" + demo() + "'");
+      "--frame-clock '" + demo() + "'");
   ASSERT_EQ(result.status, 0) << result.err;
   // Named after the scene, in the output folder.
   // The screenshot is the window: the view with the body, and the control panel.
   expect_body_and_panel(shot("t_handle_flip-1.png"));
   const std::string probe = probe_video(path("t_handle_flip-1.mp4"));
   ASSERT_THAT(probe, HasSubstr("h264,1280,720,"));
-  // Two seconds of wall time at 30 frames/s (give or take the frames around the key presses).
+  // On the frame clock Ctrl+R comes at frame 15 and again at frame 75: 60 frames drawn while
+  // recording, each 1/30 s of the viewer's time, and the first frame of the recording (the one
+  // frame either way is the rounding of the summed 1/30 s), however slowly they were drawn.
   const int frames = std::stoi(probe.substr(probe.rfind(',') + 1));
-  EXPECT_NEAR(frames, 61, 6);
+  EXPECT_NEAR(frames, 61, 1);
 }
 
 TEST_F(ViewCommand, AnInterruptDiscardsTheRecordingAndExitsWith130) {
@@ -281,11 +285,12 @@ TEST_F(ViewCommand, CtrlOOpensTheFilesSectionWhoseRecordButtonRecordsTheView) {
       "1.2 click 1183 686\n"
       "2.2 click 960 686\n"
       "2.6 quit\n",
-      "--paused '" + demo() + "'");
+      "--frame-clock --paused '" + demo() + "'");
   ASSERT_EQ(result.status, 0) << result.err;
   const std::vector<std::string> frames = tumble::testing::directory_entries(path("frames"));
-  // One second of wall time at 30 frames/s, give or take the frames around the clicks.
-  EXPECT_NEAR(static_cast<double>(frames.size()), 31.0, 6.0);
+  // On the frame clock Record (released at frame 38) to Stop (released at frame 68): 30 frames
+  // of 1/30 s and the first, give or take the frame a panel button takes to start a recording.
+  EXPECT_NEAR(static_cast<double>(frames.size()), 31.0, 2.0);
   for (const char* name : {"frame_000000.png", "frame_000010.png"}) {
     const tumble::Image frame = shot(std::string("frames/") + name);
     EXPECT_EQ(frame.width, kViewCommandWidth);

@@ -1,15 +1,23 @@
-// A scene as a video (app/video): frame counts and times, the size and range options, and the
-// render job stepping and drawing frame by frame.
+// A scene as a video (app/video): frame counts and times, the size and range options, the
+// render job stepping and drawing frame by frame, and write_render (the whole `tumble render`)
+// in process.
 #include "app/video/render_job.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <sstream>
+
 #include <nlohmann/json.hpp>
 
+#include "app/support/exit_status.hpp"
 #include "engine/simulation/simulation.hpp"
+#include "media/output_kind.hpp"
+#include "media/png_io.hpp"
 #include "render/renderer.hpp"
 #include "support/command_test.hpp"
+#include "support/image_compare.hpp"
 #include "support/input_error.hpp"
 #include "support/scene_builder.hpp"
 
@@ -115,6 +123,86 @@ TEST_F(RenderJobTest, AJobFromASharedCompiledSceneIsTheJobOfItsOwnPlan) {
   shared.draw(from_shared);
   own.draw(from_own);
   EXPECT_TRUE(from_shared.rgba == from_own.rgba);
+}
+
+TEST_F(RenderJobTest, WriteRenderWritesTheRangesFramesAsTheJobDrawsThem) {
+  RenderOptions options;
+  options.scene = write_scene(tumbling_scene(1.0, 0.03));
+  options.size = "64x48";
+  options.fps = 10.0;
+  options.frames = "3:6";
+  options.output = path("frames") + "/";
+  std::ostringstream out, err;
+  ASSERT_EQ(write_render(options, nullptr, out, err, /*progress=*/false), 0) << err.str();
+  EXPECT_EQ(err.str(), "");
+  EXPECT_THAT(out.str(), ::testing::StartsWith("tumble render: 3 frames written to '" +
+                                               options.output.string() + "' in "));
+  // Frames 3, 4 and 5 under their own numbers, each the image a job of the same plan draws.
+  std::size_t files = 0;
+  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir_ / "frames")) {
+    ++files;
+  }
+  EXPECT_EQ(files, 3u);
+  const RenderPlan plan = plan_render(options);
+  RenderJob job(plan);
+  tumble::Image drawn;
+  for (std::size_t frame = 3; frame < 6; ++frame) {
+    job.advance_to(frame);
+    job.draw(drawn);
+    const tumble::Image written = media::read_png(dir_ / "frames" / media::frame_file_name(frame));
+    EXPECT_EQ(testing::pixels_differing(written, drawn), 0u) << "frame " << frame;
+  }
+}
+
+TEST_F(RenderJobTest, WriteRenderOfABlowUpWarnsAndWritesEveryFrame) {
+  // As tests/app/commands/render_command_test.cpp: explicit Euler blows up at t = 2.41 s.
+  json needle = testing::fast_needle_scene();
+  needle["integrator"] = "explicit-euler";
+  RenderOptions options;
+  options.scene = write_scene(needle);
+  options.size = "32x24";
+  options.fps = 10.0;
+  options.quiet = true;
+  options.output = path("needle") + "/";
+  std::ostringstream out, err;
+  EXPECT_EQ(write_render(options, nullptr, out, err, false), kExitBlowUp);
+  EXPECT_EQ(out.str(), "");
+  const std::string warning = err.str();
+  EXPECT_THAT(warning, ::testing::StartsWith("tumble render: warning: blow-up: body 'needle' at "
+                                             "step 241 (t = 2.41 s): "));
+  EXPECT_EQ(std::count(warning.begin(), warning.end(), '\n'), 1);
+  EXPECT_THAT(warning, HasSubstr("; later frames hold the last good state (t = 2.4 s)\n"));
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "needle" / media::frame_file_name(30)));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "needle" / media::frame_file_name(31)));
+}
+
+TEST_F(RenderJobTest, WriteRenderInterruptedLeavesNothing) {
+  RenderOptions options;
+  options.scene = write_scene(tumbling_scene(1.0, 0.03));
+  options.size = "32x24";
+  options.output = path("cut") + "/";
+  int asked = 0;
+  std::ostringstream out, err;
+  EXPECT_EQ(write_render(
+                options, [&] { return ++asked > 4; }, out, err, false),
+            kExitInterrupted);
+  EXPECT_EQ(asked, 5);  // asked before each frame: four drawn, then stopped
+  EXPECT_EQ(out.str(), "");
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "cut"));
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir_),
+                          std::filesystem::directory_iterator()),
+            1);  // the scene alone: no temporary left beside it
+}
+
+TEST_F(RenderJobTest, WriteRenderOfAnUnknownOutputKindIsAnInputErrorNamingIt) {
+  RenderOptions options;
+  options.scene = write_scene(tumbling_scene(1.0, 0.03));
+  options.output = path("video.avi");
+  std::ostringstream out, err;
+  EXPECT_THAT(testing::input_error_of([&] { write_render(options, nullptr, out, err, false); }),
+              HasSubstr("'" + options.output.string() + "'"));
+  EXPECT_FALSE(std::filesystem::exists(options.output));
+  EXPECT_EQ(out.str(), "");
 }
 
 }  // namespace

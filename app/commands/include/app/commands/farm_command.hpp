@@ -5,30 +5,14 @@
 /// script; `--submit` (Slurm) or `--run` (parallel) runs it.
 
 #include <iosfwd>
-#include <optional>
-#include <string>
-#include <vector>
 
-#include "app/farm/farm_scripts.hpp"
+#include "app/farm/farm_run.hpp"
 
 namespace CLI {
 class App;
 }  // namespace CLI
 
 namespace tumble::app {
-
-struct FarmOptions {
-  std::string engine;                ///< "slurm" or "parallel"
-  std::vector<std::string> command;  ///< the words after `--`
-  std::optional<int> shards;
-  std::string tumble;  ///< the executable the workers run (default: this one)
-  bool assume_shared = false;
-  SlurmResources slurm;
-  bool submit = false;
-  bool wait = false;
-  ParallelSlots slots;
-  bool run = false;
-};
 
 /// Adds `farm` with its two subcommands to `cli`, filling `options` when parsed.
 CLI::App& add_farm_command(CLI::App& cli, FarmOptions& options);

@@ -69,8 +69,10 @@ class PartKinds {
   std::vector<const PartKind*> kinds_;
 };
 
-/// The parts' manifests read (read_part_manifest), then merged by the kind of the first part.
-/// Throws tumble::InputError for an unreadable manifest or an unknown kind, naming the part.
+/// The parts' manifests read (read_part_manifest), each part checked by its kind
+/// (PartKind::check) before anything is written, then merged by the kind of the first part.
+/// Throws tumble::InputError for an unreadable manifest, an unknown kind or a part its check
+/// refuses, naming the part.
 MergeOutcome merge_parts(const PartKinds& kinds, const std::vector<std::filesystem::path>& parts,
                          const std::filesystem::path& output,
                          const std::function<bool()>& interrupted);

@@ -9,6 +9,8 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <functional>
+#include <iosfwd>
 #include <memory>
 #include <optional>
 #include <string>
@@ -143,5 +145,16 @@ class RenderJob {
 std::unique_ptr<media::ImageSink> open_render_output(
     const VideoOptions& options, const RenderSettings& settings, std::size_t first_frame,
     const std::vector<std::filesystem::path>& inputs, const std::string& part_manifest = {});
+
+/// The whole render into options.output (`tumble render`'s job): the plan and the output, both
+/// checked before any mesh is read (a --shard writes its part and manifest), then every frame
+/// time from 0 visited and the frames of the range drawn and written, a bar on `err` with
+/// `progress`, a blow-up warning on `err` and the summary line on `out` unless options.quiet.
+/// Returns 0, kExitBlowUp (the output complete, later frames holding the last good state) or
+/// kExitInterrupted (when `interrupted` said so between frames; nothing is left under the output
+/// name). Throws tumble::InputError for bad input and ffmpeg failures, std::runtime_error when no
+/// GL context can be made.
+int write_render(const RenderOptions& options, const std::function<bool()>& interrupted,
+                 std::ostream& out, std::ostream& err, bool progress);
 
 }  // namespace tumble::app

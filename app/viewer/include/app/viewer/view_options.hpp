@@ -21,8 +21,12 @@ struct ViewOptions {
   std::optional<double> time_scale;
   std::optional<double> font_scale;  ///< panels' and overlay's text; default: the scene's
   bool paused = false;
-  std::optional<double> exit_after;  ///< seconds of wall time, then quit
+  std::optional<double> exit_after;  ///< seconds of the viewer's clock, then quit
   bool stats = false;                ///< print frame-time statistics on exit
+  /// The viewer's clock counts frames, each 1/kRecordFps s however long it takes to draw, in
+  /// place of the wall clock: script times, the simulation, recordings and exit_after then
+  /// depend on the frames drawn alone (reproducible scripted runs on a loaded machine).
+  bool frame_clock = false;
 };
 
 /// Whether this build has the windowed viewer.
