@@ -16,7 +16,7 @@
 
 #include "base/errors.hpp"
 #include "engine/geometry/mesh_topology.hpp"
-#include "engine/geometry/part_overlap.hpp"
+#include "engine/overlap/part_overlap.hpp"
 #include "overlap_policy.hpp"
 
 namespace tumble::engine {

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/geometry/part_overlap.hpp"
 #include "engine/mass/mesh_analysis.hpp"
+#include "engine/overlap/part_overlap.hpp"
 
 namespace tumble::engine::detail {
 

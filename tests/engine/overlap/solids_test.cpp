@@ -1,4 +1,4 @@
-// Tests of the exact solids (engine/geometry/solids.hpp): unions of overlapping parts against
+// Tests of the exact solids (engine/overlap/solids.hpp): unions of overlapping parts against
 // the solid they span and against closed forms, convex hulls against solids known to be convex.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -10,8 +10,8 @@
 
 #include "engine/geometry/mesh_topology.hpp"
 #include "engine/geometry/primitive_meshes.hpp"
-#include "engine/geometry/solids.hpp"
 #include "engine/mass/mass_properties.hpp"
+#include "engine/overlap/solids.hpp"
 #include "support/input_error.hpp"
 
 namespace tumble::engine {

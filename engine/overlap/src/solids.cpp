@@ -1,6 +1,6 @@
 // The union of overlapping parts and the convex hull (solids.hpp). One of the files that include
 // CGAL (compiled with its flags, in the geometry unit's CGAL object library).
-#include "engine/geometry/solids.hpp"
+#include "engine/overlap/solids.hpp"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
