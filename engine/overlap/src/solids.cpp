@@ -9,7 +9,10 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/convex_hull_3.h>
 
+#include <algorithm>
+#include <array>
 #include <map>
+#include <set>
 #include <stdexcept>
 
 #include "base/errors.hpp"
@@ -23,7 +26,8 @@ using ExactMesh = CGAL::Surface_mesh<ExactKernel::Point_3>;
 using HullKernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using HullMesh = CGAL::Surface_mesh<HullKernel::Point_3>;
 
-/// The triangles of part `part` as a surface mesh of exact points.
+/// The triangles of part `part` as a surface mesh of exact points, each face once (a face
+/// repeated with the same orientation, as in a duplicated surface, is skipped).
 ExactMesh part_surface(const TriangleMesh& mesh, const std::vector<std::uint32_t>& triangle_part,
                        std::uint32_t part) {
   ExactMesh surface;
@@ -36,9 +40,14 @@ ExactMesh part_surface(const TriangleMesh& mesh, const std::vector<std::uint32_t
     }
     return at->second;
   };
+  std::set<std::array<std::uint32_t, 3>> faces;
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     if (triangle_part[t] != part) continue;
     const auto& tri = mesh.triangles[t];
+    // The rotation starting at the smallest index names a face with its orientation.
+    const std::size_t first =
+        static_cast<std::size_t>(std::min_element(tri.begin(), tri.end()) - tri.begin());
+    if (!faces.insert({tri[first], tri[(first + 1) % 3], tri[(first + 2) % 3]}).second) continue;
     if (surface.add_face(vertex(tri[0]), vertex(tri[1]), vertex(tri[2])) ==
         ExactMesh::null_face()) {
       throw std::runtime_error("part " + std::to_string(part + 1) + " is not a manifold surface");
