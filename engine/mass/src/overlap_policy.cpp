@@ -52,7 +52,7 @@ std::string OverlapPolicy::describe(const OverlapFinding& f) const {
       return part(f.first) + " intersects itself (" + pairs +
              " cross or overlap), so the volume it encloses is not well defined: where its "
              "surface passes through itself, matter " +
-             counts_twice();
+             (mode_ == OverlapMode::kUnion ? std::string("would count twice") : counts_twice());
     case OverlapKind::kDuplicate:
       return part(f.first) + " repeats itself: the same surface twice at the same place (" + pairs +
              " repeated with the same orientation), so its volume (" +
