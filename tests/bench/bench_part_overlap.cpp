@@ -12,9 +12,9 @@
 #include <benchmark/benchmark.h>
 
 #include "engine/geometry/mesh_topology.hpp"
-#include "engine/geometry/part_overlap.hpp"
 #include "engine/geometry/primitive_meshes.hpp"
 #include "engine/mass/mesh_analysis.hpp"
+#include "engine/overlap/part_overlap.hpp"
 
 namespace {
 

@@ -194,3 +194,23 @@ def test_shell_mode_is_named_and_equals_the_command_line(cli_json, tmp_path):
     assert shell.method == "shell"
     assert shell.to_dict() == dict(cli_json("inspect", obj, "--shell", "0.01"), method="shell")
     assert shell.volume == pytest.approx(6 * 0.01, rel=1e-12)
+
+
+def test_overlap_keyword_takes_the_union_the_sum_or_refuses():
+    # Two unit cubes, the second moved by 0.5 along x: they share 0.5 m^3.
+    vertices, faces = box_arrays((1.0, 1.0, 1.0))
+    both = (np.vstack([vertices, vertices + [0.5, 0, 0]]), np.vstack([faces, faces + 8]))
+    united = tumble.mass_properties(*both)
+    assert united.volume == pytest.approx(1.5, rel=1e-12)
+    assert united.to_dict()["overlap"] == "union"
+    assert united.to_dict()["shared_volume"] == pytest.approx(0.5, rel=1e-12)
+    assert any("shared volume, counted once, is 0.5 m^3" in w for w in united.warnings)
+    summed = tumble.mass_properties(*both, overlap="sum")
+    assert summed.volume == pytest.approx(2.0, rel=1e-12)
+    assert summed.to_dict()["overlap"] == "sum"
+    with pytest.raises(tumble.InputError, match="parts 1 and 2 of 2 overlap"):
+        tumble.mass_properties(*both, overlap="refuse")
+    with pytest.raises(tumble.InputError, match="overlap: expected 'union', 'sum' or 'refuse'"):
+        tumble.mass_properties(*both, overlap="merge")
+    with pytest.raises(tumble.InputError, match="allow_overlap: True is overlap='sum'"):
+        tumble.mass_properties(*both, overlap="refuse", allow_overlap=True)

@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/support/exit_status.hpp"
+#include "overlap_option.hpp"
 
 namespace tumble::app {
 
@@ -52,8 +53,7 @@ CLI::App& add_inertials_command(CLI::App& cli, InertialsOptions& options) {
           "principal (the principal axes' rotation and three moments)")
       ->check(CLI::IsMember({"mesh", "principal"}))
       ->option_text("mesh|principal");
-  command.add_flag("--allow-overlap", options.compute.allow_overlap,
-                   "Accept meshes whose parts overlap (as inspect --allow-overlap)");
+  add_overlap_options(command, options.compute.overlap);
   command.add_flag("--json", options.json, "Print the comparison as JSON");
   command.add_option("-o,--output", options.output,
                      "Write the robot file with each computed inertial in place of the stated "

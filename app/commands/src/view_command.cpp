@@ -48,8 +48,8 @@ CLI::App& add_view_command(CLI::App& cli, ViewOptions& options) {
   add_font_scale_option(view, options.font_scale);
   view.add_flag("--paused", options.paused, "Start paused");
   view.add_flag("--allow-overlap", options.allow_overlap,
-                "A mesh opened on its own may have overlapping parts (their shared volume "
-                "counts twice), as with tumble inspect --allow-overlap");
+                "A mesh opened on its own counts overlapping parts whole (their shared volume "
+                "twice), as tumble inspect --overlap sum; by default it is their exact union");
   view.add_option_function<double>(
           "--exit-after", [&](double value) { options.exit_after = value; },
           "Quit after S seconds of wall time (of frames with --frame-clock)")

@@ -30,7 +30,7 @@ std::string method_of(const engine::MeshReport& report) {
 engine::MassOptions mass_options(const std::optional<double>& density,
                                  const std::optional<double>& mass, const py::object& scale,
                                  const std::optional<double>& shell, const std::string& inertia,
-                                 bool allow_overlap) {
+                                 engine::OverlapMode overlap) {
   if (inertia != "exact" && inertia != "shell") {
     throw_input_error("inertia: expected 'exact' or 'shell', got '" + inertia + "'");
   }
@@ -42,7 +42,7 @@ engine::MassOptions mass_options(const std::optional<double>& density,
   options.density = density;
   options.mass = mass;
   options.shell_thickness = shell;
-  options.allow_overlap = allow_overlap;
+  options.overlap = overlap;
   if (py::isinstance<py::float_>(scale) || py::isinstance<py::int_>(scale)) {
     options.scale = Eigen::Vector3d::Constant(scale.cast<double>());
   } else {
@@ -302,36 +302,40 @@ void bind_mass_functions(py::module_& module) {
       "inspect",
       [](const py::object& path, std::optional<double> density, std::optional<double> mass,
          const py::object& scale, std::optional<double> shell, const std::string& inertia,
-         bool allow_overlap) {
+         const std::optional<std::string>& overlap, bool allow_overlap) {
         const std::string file = py::str(py::module_::import("os").attr("fspath")(path));
-        return inspect_path(file,
-                            mass_options(density, mass, scale, shell, inertia, allow_overlap));
+        return inspect_path(file, mass_options(density, mass, scale, shell, inertia,
+                                               overlap_mode_of(overlap, allow_overlap)));
       },
       py::arg("path"), py::kw_only(), py::arg("density") = py::none(), py::arg("mass") = py::none(),
       py::arg("scale") = 1.0, py::arg("shell") = py::none(), py::arg("inertia") = "exact",
-      py::arg("allow_overlap") = false,
+      py::arg("overlap") = py::none(), py::arg("allow_overlap") = false,
       R"doc(Mass properties of one mesh file, as `tumble inspect FILE` computes them.
 
 density: kg/m^3 (default 1000, water); mass: kg, total (excludes density); scale: file units
 to metres, one factor or (sx, sy, sz) (0.001 for millimetres); shell: thickness in metres for
-a thin shell of the surface; inertia: "exact" (a closed mesh) or "shell"; allow_overlap: count
-overlapping parts whole (a warning says how much counts twice) instead of refusing them.
+a thin shell of the surface; inertia: "exact" (a closed mesh) or "shell"; overlap: parts that
+overlap, nest facing the same way or repeat are "union" (their exact union, the default; a
+warning states the shared volume), "sum" (each counted whole) or "refuse" (an error), as
+--overlap; allow_overlap=True: the same as overlap="sum".
 Raises tumble.InputError (a ValueError) with the command line's one-line message.)doc");
 
   module.def(
       "mass_properties",
       [](const py::object& vertices, const py::object& faces, std::optional<double> density,
          std::optional<double> mass, const py::object& scale, std::optional<double> shell,
-         const std::string& inertia, bool allow_overlap) {
-        const engine::MassOptions options =
-            mass_options(density, mass, scale, shell, inertia, allow_overlap);
+         const std::string& inertia, const std::optional<std::string>& overlap,
+         bool allow_overlap) {
+        const engine::MassOptions options = mass_options(density, mass, scale, shell, inertia,
+                                                         overlap_mode_of(overlap, allow_overlap));
         engine::TriangleMesh mesh = mesh_of_arrays(vertices, faces);
         py::gil_scoped_release release;
         return MassPropertiesResult(engine::analyze_mesh(std::move(mesh), options, "mesh arrays"));
       },
       py::arg("vertices"), py::arg("faces"), py::kw_only(), py::arg("density") = py::none(),
       py::arg("mass") = py::none(), py::arg("scale") = 1.0, py::arg("shell") = py::none(),
-      py::arg("inertia") = "exact", py::arg("allow_overlap") = false,
+      py::arg("inertia") = "exact", py::arg("overlap") = py::none(),
+      py::arg("allow_overlap") = false,
       R"doc(Mass properties of a triangle mesh given as numpy arrays, with the checks a file gets
 (open, flipped, self-intersecting or overlapping parts...).
 

@@ -90,6 +90,19 @@ py::array_t<double> to_numpy(const Eigen::Matrix3d& m) {
   return out;
 }
 
+engine::OverlapMode overlap_mode_of(const std::optional<std::string>& overlap, bool allow_overlap) {
+  if (!overlap) return allow_overlap ? engine::OverlapMode::kSum : engine::OverlapMode::kUnion;
+  const auto mode = engine::overlap_mode_named(*overlap);
+  if (!mode) {
+    throw_input_error("overlap: expected 'union', 'sum' or 'refuse', got '" + *overlap + "'");
+  }
+  if (allow_overlap && *mode != engine::OverlapMode::kSum) {
+    throw_input_error("allow_overlap: True is overlap='sum'; it contradicts overlap='" + *overlap +
+                      "'");
+  }
+  return *mode;
+}
+
 Eigen::Vector3d vector3(const py::handle& value, const std::string& what) {
   py::array_t<double, py::array::c_style | py::array::forcecast> array;
   try {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "base/errors.hpp"
+#include "engine/mass/mesh_analysis.hpp"
 
 namespace tumble::python {
 
@@ -50,6 +51,11 @@ auto naming_files(const std::vector<std::string>& paths, Call&& call) {
 
 /// Raises tumble.InputError with `message` (from a binding's own checks of its arguments).
 [[noreturn]] void throw_input_error(const std::string& message);
+
+/// The overlap mode of the keywords `overlap` ("union", "sum" or "refuse"; default union) and
+/// its old alias `allow_overlap` (True: "sum"); InputError when they disagree or the name is
+/// unknown.
+engine::OverlapMode overlap_mode_of(const std::optional<std::string>& overlap, bool allow_overlap);
 
 /// A (3,) float64 array copied from `v`.
 py::array_t<double> to_numpy(const Eigen::Vector3d& v);

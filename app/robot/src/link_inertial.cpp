@@ -15,7 +15,7 @@ namespace {
 constexpr double kDefaultDensity = 1000.0;  // kg/m^3, water
 
 engine::MassProperties mesh_properties(const MeshGeometry& mesh, double density,
-                                       std::optional<double> mass, bool allow_overlap,
+                                       std::optional<double> mass, engine::OverlapMode overlap,
                                        std::vector<std::string>* notes) {
   engine::MassOptions options;
   if (mass) {
@@ -24,7 +24,7 @@ engine::MassProperties mesh_properties(const MeshGeometry& mesh, double density,
     options.density = density;
   }
   options.scale = mesh.scale;
-  options.allow_overlap = allow_overlap;
+  options.overlap = overlap;
   const engine::MeshReport report = inspect_file(mesh.file, options);
   if (notes) {
     for (const std::string& warning : report.warnings) {
@@ -37,7 +37,7 @@ engine::MassProperties mesh_properties(const MeshGeometry& mesh, double density,
 }  // namespace
 
 engine::MassProperties geometry_mass_properties(const Geometry& geometry, double density,
-                                                bool allow_overlap,
+                                                engine::OverlapMode overlap,
                                                 std::vector<std::string>* notes) {
   const double rho = geometry.density.value_or(density);
   engine::MassProperties local;
@@ -46,7 +46,7 @@ engine::MassProperties geometry_mass_properties(const Geometry& geometry, double
         [&](const auto& shape) {
           using T = std::decay_t<decltype(shape)>;
           if constexpr (std::is_same_v<T, MeshGeometry>) {
-            return mesh_properties(shape, rho, geometry.mass, allow_overlap, notes);
+            return mesh_properties(shape, rho, geometry.mass, overlap, notes);
           } else {
             return geometry.mass ? engine::mass_properties_of_mass(shape, *geometry.mass)
                                  : engine::mass_properties(shape, rho);
@@ -74,8 +74,7 @@ LinkInertial compute_link_inertial(const Link& link, const ComputeOptions& optio
   std::vector<engine::MassProperties> parts;
   try {
     for (const Geometry& geometry : link.geometries) {
-      parts.push_back(
-          geometry_mass_properties(geometry, density, options.allow_overlap, &out.notes));
+      parts.push_back(geometry_mass_properties(geometry, density, options.overlap, &out.notes));
     }
   } catch (const InputError& error) {
     out.error = error.what();

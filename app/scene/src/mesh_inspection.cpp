@@ -93,6 +93,11 @@ nlohmann::json report_to_json(const engine::MeshReport& report) {
   if (report.shell) {
     out["thickness"] = report.thickness;
     out["area"] = report.area;
+  } else {
+    // How overlapping parts were counted (--overlap), and what their union took out.
+    out["overlap"] = engine::overlap_mode_name(report.overlap);
+    out["united_parts"] = report.united_parts;
+    out["shared_volume"] = report.shared_volume;
   }
   return out;
 }
@@ -120,6 +125,14 @@ std::string format_report(const engine::MeshReport& report) {
     row("thickness", fixed("%.9g", report.thickness) + " m");
   }
   row("volume", fixed("%.9g", report.volume) + " m^3");
+  if (!report.shell && (report.parts > 1 || report.united_parts > 0)) {
+    row("overlap",
+        std::string(engine::overlap_mode_name(report.overlap)) +
+            (report.united_parts > 0
+                 ? " of " + std::to_string(report.united_parts) + " parts, shared volume " +
+                       fixed("%.9g", report.shared_volume) + " m^3 counted once"
+                 : ""));
+  }
   row("density", fixed("%.9g", report.density) + " kg/m^3");
   row("mass", fixed("%.9g", mp.mass) + " kg");
   row("centre of mass", vector_text(mp.center_of_mass, length) + " m");

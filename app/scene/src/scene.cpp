@@ -183,7 +183,15 @@ void parse_body_matter(const Field& field, BodyDescription& body) {
   }
   if (auto allow = field.find("allow_overlap")) {
     if (!mesh) allow->fail("\"allow_overlap\" applies to a mesh only");
-    body.allow_overlap = allow->boolean();
+    if (field.find("overlap")) allow->fail("give \"overlap\" or \"allow_overlap\", not both");
+    body.overlap = allow->boolean() ? engine::OverlapMode::kSum : engine::OverlapMode::kRefuse;
+  }
+  if (auto overlap = field.find("overlap")) {
+    if (!mesh) overlap->fail("\"overlap\" applies to a mesh only");
+    const std::string name = overlap->string();
+    const auto mode = engine::overlap_mode_named(name);
+    if (!mode) overlap->fail("expected \"union\", \"sum\" or \"refuse\", got \"" + name + "\"");
+    body.overlap = *mode;
   }
 }
 
@@ -219,8 +227,9 @@ void parse_loads(const Field& field, BodyDescription& body) {
 BodyDescription parse_body(const Field& field, std::size_t index,
                            const std::filesystem::path& folder) {
   field.expect_object({"name", "mesh", "shape", "inertia", "mass", "density", "scale",
-                       "allow_overlap", "position", "orientation", "velocity", "angular_velocity",
-                       "angular_velocity_frame", "pivot", "torque", "torque_frame", "spring"});
+                       "allow_overlap", "overlap", "position", "orientation", "velocity",
+                       "angular_velocity", "angular_velocity_frame", "pivot", "torque",
+                       "torque_frame", "spring"});
   BodyDescription body;
   parse_body_name(field, index, body);
   parse_body_shape(field, folder, body);

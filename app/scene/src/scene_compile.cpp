@@ -43,7 +43,7 @@ engine::MeshReport import_body_mesh(const BodyDescription& body, const std::stri
   options.mass = body.mass;
   options.density = body.density;
   options.scale = Eigen::Vector3d::Constant(body.scale);
-  options.allow_overlap = body.allow_overlap;
+  options.overlap = body.overlap;
   engine::MeshReport report;
   try {
     report = inspect_file(*body.mesh, options, shape);

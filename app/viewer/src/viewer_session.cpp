@@ -71,7 +71,7 @@ SceneDescription mesh_scene(const std::filesystem::path& mesh, bool allow_overla
   body.name = mesh.stem().string().empty() ? "body" : mesh.stem().string();
   body.mesh = mesh;
   body.density = 1000.0;
-  body.allow_overlap = allow_overlap;
+  body.overlap = allow_overlap ? engine::OverlapMode::kSum : engine::OverlapMode::kUnion;
   scene.bodies.push_back(body);
   return scene;
 }

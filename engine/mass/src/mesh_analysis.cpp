@@ -16,8 +16,9 @@
 
 #include "base/errors.hpp"
 #include "engine/geometry/mesh_topology.hpp"
-#include "engine/geometry/part_overlap.hpp"
+#include "engine/overlap/part_overlap.hpp"
 #include "overlap_policy.hpp"
+#include "part_union.hpp"
 
 namespace tumble::engine {
 namespace {
@@ -131,7 +132,11 @@ void orient_parts(std::vector<PartSummary>& parts, double signed_total,
   // Then outward-facing parts that sit in matter.
   for (std::uint32_t i = 0; i < count; ++i) {
     if (inward(i) || matter_around(parts, i, nesting) <= 0) continue;
-    policy.nested(i, std::abs(parts[i].signed_volume) / 6.0);
+    std::vector<std::uint32_t> outers;  // the outward parts around it (for their union)
+    for (const detail::PartNesting& n : nesting) {
+      if (n.inner == i && !inward(n.outer)) outers.push_back(n.outer);
+    }
+    policy.nested(i, std::abs(parts[i].signed_volume) / 6.0, outers);
   }
 }
 
@@ -312,13 +317,21 @@ void solid_properties(TriangleMesh& mesh, const Eigen::Vector3d& reference,
   search.face_pairs = options.check_overlap;
   const detail::PartOverlaps overlaps =
       detail::find_part_overlaps(mesh, pass.topology.triangle_part, pass.topology.parts, search);
-  detail::OverlapPolicy policy(options.allow_overlap, report.source, pass.topology.parts);
+  detail::OverlapPolicy policy(options.overlap, report.source, pass.topology.parts);
+  report.overlap = options.overlap;
   policy.findings(overlaps);
   policy.settle(report);
-  const MomentIntegrals integrals =
+  MomentIntegrals integrals =
       pass.topology.parts == 1
           ? single_part_integrals(mesh, reference, pass, policy.cancelled(), report)
           : multi_part_integrals(mesh, reference, pass, overlaps.nesting, policy, report);
+  if (options.overlap == OverlapMode::kUnion && !policy.united().empty()) {
+    // A single part flipped as a whole kept its faces: turn them outward for the union.
+    if (pass.topology.parts == 1 && report.flipped) {
+      for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
+    }
+    integrals = detail::united_integrals(mesh, pass.topology, policy.united(), reference, report);
+  }
   report.volume = integrals.measure;
   if (!(report.volume > 0.0)) {
     fail(report.source, "encloses a non-positive volume (" + format_number(report.volume) +
@@ -329,6 +342,25 @@ void solid_properties(TriangleMesh& mesh, const Eigen::Vector3d& reference,
 }
 
 }  // namespace
+
+const char* overlap_mode_name(OverlapMode mode) {
+  switch (mode) {
+    case OverlapMode::kSum:
+      return "sum";
+    case OverlapMode::kRefuse:
+      return "refuse";
+    case OverlapMode::kUnion:
+      break;
+  }
+  return "union";
+}
+
+std::optional<OverlapMode> overlap_mode_named(std::string_view name) {
+  for (const OverlapMode mode : {OverlapMode::kUnion, OverlapMode::kSum, OverlapMode::kRefuse}) {
+    if (name == overlap_mode_name(mode)) return mode;
+  }
+  return std::nullopt;
+}
 
 MeshReport analyze_mesh(TriangleMesh mesh, const MassOptions& options, const std::string& source,
                         bool distinct_positions) {

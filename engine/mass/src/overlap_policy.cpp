@@ -1,6 +1,7 @@
 // Overlap findings as one-line errors or warnings (overlap_policy.hpp).
 #include "overlap_policy.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 #include "base/errors.hpp"
@@ -18,6 +19,25 @@ std::string volume_text(const std::optional<double>& volume) {
 
 }  // namespace
 
+std::string OverlapPolicy::counts_twice() const {
+  switch (mode_) {
+    case OverlapMode::kSum:
+      return "counts twice";
+    case OverlapMode::kUnion:
+      return "counts once (exact union)";
+    case OverlapMode::kRefuse:
+      break;
+  }
+  return "would count twice";
+}
+
+std::vector<std::uint32_t> OverlapPolicy::united() const {
+  std::vector<std::uint32_t> parts = united_;
+  std::sort(parts.begin(), parts.end());
+  parts.erase(std::unique(parts.begin(), parts.end()), parts.end());
+  return parts;
+}
+
 std::string OverlapPolicy::part(std::uint32_t index) const {
   return "part " + std::to_string(index + 1) + " of " + std::to_string(parts_);
 }
@@ -32,7 +52,7 @@ std::string OverlapPolicy::describe(const OverlapFinding& f) const {
       return part(f.first) + " intersects itself (" + pairs +
              " cross or overlap), so the volume it encloses is not well defined: where its "
              "surface passes through itself, matter " +
-             counts_twice();
+             (mode_ == OverlapMode::kUnion ? std::string("would count twice") : counts_twice());
     case OverlapKind::kDuplicate:
       return part(f.first) + " repeats itself: the same surface twice at the same place (" + pairs +
              " repeated with the same orientation), so its volume (" +
@@ -53,7 +73,8 @@ std::string OverlapPolicy::describe(const OverlapFinding& f) const {
         return pair + " overlap (their surfaces cross): part " + std::to_string(f.second + 1) +
                " faces the other way, as a cavity would, but reaches outside part " +
                std::to_string(f.first + 1) + ", so a volume (" + volume_text(f.shared_volume) +
-               ") that is not matter " + (allow_ ? "is" : "would be") + " taken out";
+               ") that is not matter " + (mode_ == OverlapMode::kSum ? "is" : "would be") +
+               " taken out";
       }
       return pair + " overlap (their surfaces cross), so their shared volume (" +
              volume_text(f.shared_volume) + ") " + counts_twice();
@@ -68,7 +89,15 @@ std::string OverlapPolicy::describe(const OverlapFinding& f) const {
 void OverlapPolicy::findings(const PartOverlaps& overlaps) {
   for (const OverlapFinding& finding : overlaps.findings) {
     if (finding.kind != OverlapKind::kCancelling) {
-      problems_.push_back(describe(finding));
+      // A union needs parts free of self-intersections, and an inward part is no solid.
+      const bool unitable = finding.kind != OverlapKind::kSelfIntersection && !finding.cavity;
+      if (mode_ == OverlapMode::kUnion && !unitable) {
+        refused_.push_back(describe(finding));
+      } else {
+        problems_.push_back(describe(finding));
+        unite(finding.first);
+        unite(finding.second);
+      }
       continue;
     }
     notes_.push_back(describe(finding));
@@ -76,7 +105,10 @@ void OverlapPolicy::findings(const PartOverlaps& overlaps) {
   }
 }
 
-void OverlapPolicy::nested(std::uint32_t inner, double volume) {
+void OverlapPolicy::nested(std::uint32_t inner, double volume,
+                           const std::vector<std::uint32_t>& outers) {
+  unite(inner);
+  for (const std::uint32_t outer : outers) unite(outer);
   problems_.push_back(part(inner) +
                       " lies inside another part with the same orientation, so its volume (" +
                       volume_text(volume) + ") " + counts_twice() +
@@ -86,15 +118,26 @@ void OverlapPolicy::nested(std::uint32_t inner, double volume) {
 void OverlapPolicy::settle(MeshReport& report) {
   for (std::string& note : notes_) report.warnings.push_back(std::move(note));
   notes_.clear();
+  if (mode_ == OverlapMode::kUnion && !refused_.empty()) {
+    std::string message = source_ + ": " + refused_.front();
+    if (refused_.size() > 1) {
+      message += " (and " + std::to_string(refused_.size() - 1) + " more)";
+    }
+    throw InputError(message +
+                     "; their exact union cannot be computed (it needs closed, outward parts "
+                     "free of self-intersections): give --overlap sum to count each part as "
+                     "wound (\"overlap\": \"sum\" in a scene)");
+  }
   if (problems_.empty()) return;
-  if (!allow_) {
+  if (mode_ == OverlapMode::kRefuse) {
     std::string message = source_ + ": " + problems_.front();
     if (problems_.size() > 1) {
       message += " (and " + std::to_string(problems_.size() - 1) + " more overlap" +
                  (problems_.size() == 2 ? "" : "s") + ")";
     }
     throw InputError(message +
-                     "; give --allow-overlap to accept it (\"allow_overlap\": true in a scene)");
+                     "; give --overlap union to take their exact union or --overlap sum to "
+                     "count each part whole (\"overlap\" in a scene)");
   }
   for (std::string& problem : problems_) report.warnings.push_back(std::move(problem));
   problems_.clear();

@@ -159,26 +159,51 @@ TEST_F(InspectCommand, OpenMeshFailsWithOneLineNamingTheFile) {
   EXPECT_TRUE(result.out.empty());
 }
 
-TEST_F(InspectCommand, OverlappingPartsFailUnlessAllowed) {
-  // Two unit cubes, the second moved by (0.5, 0.5, 0.5): they share 0.125 m^3.
+TEST_F(InspectCommand, OverlappingPartsAreTheirUnionTheirSumOrRefused) {
+  // Two unit cubes, the second moved by (0.5, 0.5, 0.5): they share 0.125 m^3, so their union
+  // is 2 - 0.125 = 1.875 m^3 (inclusion-exclusion).
   testing::write_stl_file(path("two.stl"), box_solid(1, 1, 1) + box_solid(1, 1, 1, 0.5, 0.5, 0.5));
-  const auto refused = run_command(tumble_executable() + " inspect " + path("two.stl"));
+  const auto refused =
+      run_command(tumble_executable() + " inspect --overlap refuse " + path("two.stl"));
   EXPECT_EQ(refused.status, 1);
   EXPECT_EQ(refused.err, "tumble inspect: error: " + path("two.stl") +
                              ": parts 1 and 2 of 2 overlap (their surfaces cross), so their "
-                             "shared volume (0.125 m^3) would count twice; give --allow-overlap "
-                             "to accept it (\"allow_overlap\": true in a scene)\n");
+                             "shared volume (0.125 m^3) would count twice; give --overlap union "
+                             "to take their exact union or --overlap sum to count each part "
+                             "whole (\"overlap\" in a scene)\n");
   EXPECT_TRUE(refused.out.empty());
 
-  const auto allowed =
-      run_command(tumble_executable() + " inspect --allow-overlap --json " + path("two.stl"));
-  ASSERT_EQ(allowed.status, 0) << allowed.err;
-  const nlohmann::json report = nlohmann::json::parse(allowed.out);
-  EXPECT_NEAR(report.at("volume").get<double>(), 2.0, 1e-6);  // both cubes, as warned
-  EXPECT_THAT(report.at("warnings").dump(), HasSubstr("shared volume (0.125 m^3) counts twice"));
-  const auto human =
-      run_command(tumble_executable() + " inspect --allow-overlap " + path("two.stl"));
+  for (const char* sum : {"--overlap sum", "--allow-overlap"}) {
+    const auto allowed =
+        run_command(tumble_executable() + " inspect " + sum + " --json " + path("two.stl"));
+    ASSERT_EQ(allowed.status, 0) << allowed.err;
+    const nlohmann::json report = nlohmann::json::parse(allowed.out);
+    EXPECT_NEAR(report.at("volume").get<double>(), 2.0, 1e-12);  // both cubes, as warned
+    EXPECT_EQ(report.at("overlap"), "sum");
+    EXPECT_THAT(report.at("warnings").dump(), HasSubstr("shared volume (0.125 m^3) counts twice"));
+  }
+  const auto human = run_command(tumble_executable() + " inspect --overlap sum " + path("two.stl"));
   EXPECT_THAT(human.out, HasSubstr("note  parts 1 and 2 of 2 overlap"));
+  EXPECT_THAT(human.out, HasSubstr("overlap           sum\n"));
+
+  // The default: their exact union, the shared volume stated.
+  const auto united = run_command(tumble_executable() + " inspect --json " + path("two.stl"));
+  ASSERT_EQ(united.status, 0) << united.err;
+  const nlohmann::json report = nlohmann::json::parse(united.out);
+  EXPECT_NEAR(report.at("volume").get<double>(), 1.875, 1e-12);
+  EXPECT_EQ(report.at("overlap"), "union");
+  EXPECT_EQ(report.at("united_parts"), 2);
+  EXPECT_NEAR(report.at("shared_volume").get<double>(), 0.125, 1e-12);
+  EXPECT_THAT(report.at("warnings").dump(),
+              HasSubstr("parts 1 and 2 of 2 are taken as their exact union (--overlap union): "
+                        "their shared volume, counted once, is 0.125 m^3 (6.66667% of the "
+                        "mesh's volume)"));
+  const auto text = run_command(tumble_executable() + " inspect " + path("two.stl"));
+  EXPECT_THAT(text.out, HasSubstr("overlap           union of 2 parts, shared volume 0.125 m^3 "
+                                  "counted once"));
+  const auto bad = run_command(tumble_executable() + " inspect --overlap merge " + path("two.stl"));
+  EXPECT_EQ(bad.status, 1);
+  EXPECT_THAT(bad.err, HasSubstr("--overlap"));
 }
 
 TEST_F(InspectCommand, SkippingTheOverlapChecksChangesNoCleanResultAndStillSeesNesting) {
@@ -194,9 +219,15 @@ TEST_F(InspectCommand, SkippingTheOverlapChecksChangesNoCleanResultAndStillSeesN
   testing::write_stl_file(path("nested.stl"),
                           box_solid(2, 2, 2) + box_solid(0.5, 0.5, 0.5, 0.25, 0.25, 0.25));
   const auto nested =
-      run_command(tumble_executable() + " inspect --skip-overlap-checks " + path("nested.stl"));
+      run_command(tumble_executable() + " inspect --skip-overlap-checks --overlap refuse " +
+                  path("nested.stl"));
   EXPECT_EQ(nested.status, 1);
   EXPECT_THAT(nested.err, HasSubstr("lies inside another part with the same orientation"));
+  // By default the inner cube is inside the union: the outer cube alone.
+  const auto united = run_command(tumble_executable() + " inspect --skip-overlap-checks --json " +
+                                  path("nested.stl"));
+  ASSERT_EQ(united.status, 0) << united.err;
+  EXPECT_NEAR(nlohmann::json::parse(united.out).at("volume").get<double>(), 8.0, 1e-12);
 }
 
 TEST_F(InspectCommand, PartsStackedFaceToFaceAreNoOverlap) {

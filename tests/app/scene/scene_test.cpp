@@ -302,9 +302,23 @@ TEST(SceneErrors, MassDensityAndScale) {
   EXPECT_THAT(scene_error_of(mesh),
               HasSubstr("bodies[0].allow_overlap: expected true or false, got 1"));
   mesh["bodies"][0]["allow_overlap"] = true;
-  EXPECT_TRUE(parse_scene(mesh.dump(), kSceneFile).bodies[0].allow_overlap);
+  EXPECT_EQ(parse_scene(mesh.dump(), kSceneFile).bodies[0].overlap, engine::OverlapMode::kSum);
+  mesh["bodies"][0]["allow_overlap"] = false;
+  EXPECT_EQ(parse_scene(mesh.dump(), kSceneFile).bodies[0].overlap, engine::OverlapMode::kRefuse);
+  mesh["bodies"][0]["overlap"] = "sum";
+  EXPECT_THAT(
+      scene_error_of(mesh),
+      HasSubstr("bodies[0].allow_overlap: give \"overlap\" or \"allow_overlap\", not both"));
   mesh["bodies"][0].erase("allow_overlap");
-  EXPECT_FALSE(parse_scene(mesh.dump(), kSceneFile).bodies[0].allow_overlap);
+  EXPECT_EQ(parse_scene(mesh.dump(), kSceneFile).bodies[0].overlap, engine::OverlapMode::kSum);
+  mesh["bodies"][0]["overlap"] = "refuse";
+  EXPECT_EQ(parse_scene(mesh.dump(), kSceneFile).bodies[0].overlap, engine::OverlapMode::kRefuse);
+  mesh["bodies"][0]["overlap"] = "merge";
+  EXPECT_THAT(scene_error_of(mesh),
+              HasSubstr("bodies[0].overlap: expected \"union\", \"sum\" or \"refuse\", got "
+                        "\"merge\""));
+  mesh["bodies"][0].erase("overlap");
+  EXPECT_EQ(parse_scene(mesh.dump(), kSceneFile).bodies[0].overlap, engine::OverlapMode::kUnion);
   mesh["bodies"][0].erase("mass");
   EXPECT_THAT(scene_error_of(mesh), HasSubstr("bodies[0]: missing \"mass\" (kg) or \"density\""));
   EXPECT_THAT(scene_error_of(with_body("allow_overlap", true)),
@@ -613,10 +627,11 @@ TEST_F(SceneCompile, OverlappingPartsOfAMeshNeedAllowOverlap) {
   }
   std::ofstream(file) << first << second;
   json scene = base_scene();
-  scene["bodies"][0] = {{"mesh", "../meshes/two.obj"}, {"density", 1.0}};
+  scene["bodies"][0] = {{"mesh", "../meshes/two.obj"}, {"density", 1.0}, {"overlap", "refuse"}};
   EXPECT_THAT(testing::input_error_of([&] { compile(scene); }),
               AllOf(HasSubstr("scenes/scene.json: bodies[0].mesh: "),
                     HasSubstr("parts 1 and 2 of 2 overlap (their surfaces cross)")));
+  scene["bodies"][0].erase("overlap");
   scene["bodies"][0]["allow_overlap"] = true;
   EXPECT_NEAR(compile(scene).bodies[0].mass, 2.0, 1e-9);  // both boxes, as warned
 }

@@ -1,5 +1,6 @@
-// `tumble view --allow-overlap`: a mesh opened on its own whose parts overlap is refused, as
-// `tumble inspect` refuses it, unless the option is given (RunChoice::allow_overlap).
+// `tumble view --allow-overlap`: a mesh opened on its own whose parts overlap is their exact
+// union, as `tumble inspect` takes it, or with the option each part counted whole
+// (RunChoice::allow_overlap, --overlap sum).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -28,18 +29,17 @@ std::filesystem::path crossing_cubes() {
   return file;
 }
 
-TEST(ViewerOverlap, AnOverlappingMeshNeedsAllowOverlap) {
+TEST(ViewerOverlap, AnOverlappingMeshIsTheirUnionOrWithAllowOverlapTheirSum) {
   render::RendererOptions options;
   options.width = 160;
   options.height = 120;
   render::Renderer renderer(options);
   const auto file = crossing_cubes();
 
-  Session refused(renderer);
-  const auto error = refused.open(file);
-  ASSERT_TRUE(error);
-  EXPECT_THAT(*error, HasSubstr("parts 1 and 2 of 2 overlap"));
-  EXPECT_EQ(refused.run_count(), 0u);
+  Session united(renderer);
+  const auto union_error = united.open(file);
+  EXPECT_FALSE(union_error) << *union_error;
+  EXPECT_EQ(united.run_count(), 1u);
 
   Session allowed(renderer);
   RunChoice choice;
@@ -47,8 +47,8 @@ TEST(ViewerOverlap, AnOverlappingMeshNeedsAllowOverlap) {
   const auto no_error = allowed.open(file, choice);
   EXPECT_FALSE(no_error) << *no_error;
   EXPECT_EQ(allowed.run_count(), 1u);
-  EXPECT_TRUE(mesh_scene(file, true).bodies.at(0).allow_overlap);
-  EXPECT_FALSE(mesh_scene(file).bodies.at(0).allow_overlap);
+  EXPECT_EQ(mesh_scene(file, true).bodies.at(0).overlap, engine::OverlapMode::kSum);
+  EXPECT_EQ(mesh_scene(file).bodies.at(0).overlap, engine::OverlapMode::kUnion);
 }
 
 }  // namespace

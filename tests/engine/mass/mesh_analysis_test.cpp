@@ -377,15 +377,17 @@ TEST(MeshChecks, LoneInsideOutPartIsFlippedWithAWarning) {
   expect_inertia_near(big.mass_properties.inertia, expected.mass_properties.inertia);
 }
 
-TEST(MeshChecks, NestedPartWithTheSameOrientationIsAnErrorOrWithAllowOverlapAWarning) {
+TEST(MeshChecks, NestedPartWithTheSameOrientationIsRefusedOrSummedWithAWarning) {
   const Eigen::Vector3d outer(4.0, 3.0, 2.0), inner(2.0, 1.0, 1.0);
   const TriangleMesh mesh = joined(box(outer, {0, 0, 0}), box(inner, {0, 0, 0}));
-  EXPECT_THAT(error_of(mesh, with_density(1.0), "nested.stl"),
+  MassOptions refusing = with_density(1.0);
+  refusing.overlap = OverlapMode::kRefuse;
+  EXPECT_THAT(error_of(mesh, refusing, "nested.stl"),
               AllOf(StartsWith("nested.stl: part 2 of 2 lies inside another part with the same "
                                "orientation, so its volume (2 m^3) would count twice"),
-                    HasSubstr("give --allow-overlap to accept it")));
+                    HasSubstr("give --overlap union to take their exact union or --overlap sum")));
   MassOptions options = with_density(1.0);
-  options.allow_overlap = true;
+  options.overlap = OverlapMode::kSum;
   const MeshReport report = analyze_mesh(mesh, options, "nested.stl");
   EXPECT_EQ(report.cavities, 0u);
   EXPECT_THAT(

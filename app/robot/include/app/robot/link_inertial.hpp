@@ -9,6 +9,7 @@
 
 #include "app/robot/robot_model.hpp"
 #include "engine/mass/mass_properties.hpp"
+#include "engine/mass/mesh_analysis.hpp"
 
 namespace tumble::app::robot {
 
@@ -18,8 +19,9 @@ struct ComputeOptions {
   /// (water; MuJoCo's default too). MJCF geoms with their own density or mass keep them
   /// relative to each other either way.
   std::optional<double> density;
-  /// Accept overlapping parts within one mesh (as `inspect --allow-overlap`).
-  bool allow_overlap = false;
+  /// Overlapping parts within one mesh: their union (default), sum or an error (as `inspect
+  /// --overlap`).
+  engine::OverlapMode overlap = engine::OverlapMode::kUnion;
 };
 
 /// What came of one link.
@@ -39,7 +41,7 @@ struct LinkInertial {
 /// The mass properties of one geometry filled with `density`, in the link's frame (or, when
 /// the geometry states its own mass, of that mass). Throws InputError naming the geometry.
 engine::MassProperties geometry_mass_properties(const Geometry& geometry, double density,
-                                                bool allow_overlap,
+                                                engine::OverlapMode overlap,
                                                 std::vector<std::string>* notes = nullptr);
 
 /// The link's inertial from its geometries (never throws InputError: failures are `error`).

@@ -52,7 +52,8 @@ struct BodyDescription {
   std::optional<double> mass;                        ///< kg
   std::optional<double> density;                     ///< kg/m^3 (mesh or shape only)
   double scale = 1.0;                                ///< mesh units to metres (mesh only)
-  bool allow_overlap = false;  ///< accept overlapping parts of the mesh (MassOptions)
+  /// Overlapping parts of the mesh: their union (default), sum or an error (MassOptions).
+  engine::OverlapMode overlap = engine::OverlapMode::kUnion;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();               ///< centre of mass, world, m
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  ///< body to world, unit
   std::optional<Eigen::Vector3d> velocity;  ///< of the centre of mass (free bodies)
@@ -91,7 +92,8 @@ struct SceneDescription {
 /// "shape" (a primitive solid, app/scene/shape_field.hpp) and "inertia" ({"principal":
 /// [I1, I2, I3]} or {"tensor": [[..], [..], [..]]}); with a mesh or a shape exactly one of
 /// "mass" and "density", with an inertia "mass"; "scale" (mesh only, positive);
-/// "allow_overlap" (mesh only, boolean: accept overlapping parts, engine::MassOptions);
+/// "overlap" (mesh only: "union" (default), "sum" or "refuse", engine::OverlapMode) or its old
+/// alias "allow_overlap" (mesh only, boolean: true is "sum", false "refuse");
 /// "position", "orientation" ([w, x, y, z], any non-zero quaternion, normalised),
 /// "velocity" (not with "pivot"), "angular_velocity", "angular_velocity_frame" ("world" by
 /// default or "body"), "pivot", "torque", "torque_frame", "spring" ({"anchor", "attach",

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
@@ -14,6 +15,19 @@
 
 namespace tumble::engine {
 
+/// What to do with parts that overlap, nest with the same orientation or repeat.
+enum class OverlapMode {
+  kUnion,   ///< the solid is their exact union (CGAL corefinement); a warning states the shared
+            ///< volume (the default)
+  kSum,     ///< each part counts whole: the shared volume counts twice (a warning says how much)
+  kRefuse,  ///< an error naming the parts
+};
+
+/// "union", "sum" or "refuse".
+const char* overlap_mode_name(OverlapMode mode);
+/// The mode named "union", "sum" or "refuse"; nullopt for any other text.
+std::optional<OverlapMode> overlap_mode_named(std::string_view name);
+
 /// How to turn a mesh's geometry into matter.
 struct MassOptions {
   std::optional<double> density;  ///< kg/m^3; the default is 1000 (water)
@@ -23,9 +37,10 @@ struct MassOptions {
   /// product is negative the winding is reversed so the faces still point outward.
   Eigen::Vector3d scale = Eigen::Vector3d::Ones();
   std::optional<double> shell_thickness;  ///< m; thin-shell (area-weighted) mode when set
-  /// Accept parts that overlap, intersect themselves or repeat (their shared volume then
-  /// counts twice, and a warning says how much); by default they are an error.
-  bool allow_overlap = false;
+  /// Parts that overlap or repeat: their union (default), their sum, or an error. A part that
+  /// intersects itself is counted as wound with kSum and refused otherwise (the exact union
+  /// needs parts free of self-intersections).
+  OverlapMode overlap = OverlapMode::kUnion;
   /// Test the parts for self-intersections, repeated faces and crossings (exact; the default).
   /// Off, none of them is found: self-intersections and repeats count without a warning, and
   /// parts that cross may be taken as nested; whether a part lies inside another (a cavity, or
@@ -59,7 +74,10 @@ struct MeshReport {
   PrincipalFrame principal;
   Eigen::Vector3d bounds_min = Eigen::Vector3d::Zero();
   Eigen::Vector3d bounds_max = Eigen::Vector3d::Zero();
-  std::vector<std::string> warnings;  ///< things the user should know and may want to fix
+  std::vector<std::string> warnings;          ///< things the user should know and may want to fix
+  OverlapMode overlap = OverlapMode::kUnion;  ///< the mode the mass properties were computed in
+  std::size_t united_parts = 0;  ///< parts replaced by their exact union (kUnion), 0 if none
+  double shared_volume = 0.0;    ///< m^3: their volumes' sum minus their union's
 };
 
 /// Validates options, scales, welds, checks and integrates `mesh`. Throws InputError with a

@@ -17,7 +17,7 @@
 //    whose every crossing is a clean pass through a face's interior (else another ray).
 // The reference method of pass 1 (tests) finds the pairs with CGAL::box_self_intersection_d
 // (Zomorodian and Edelsbrunner 2002) and judges each here.
-#include "engine/geometry/part_overlap.hpp"
+#include "engine/overlap/part_overlap.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>

@@ -35,18 +35,19 @@ using mesh_fixtures::reversed;
 
 MassOptions allowing(double scale = 1.0) {
   MassOptions options;
-  options.allow_overlap = true;
+  options.overlap = OverlapMode::kSum;
   options.scale = Eigen::Vector3d::Constant(scale);
   return options;
 }
 
 MassOptions strict(double scale = 1.0) {
   MassOptions options;
+  options.overlap = OverlapMode::kRefuse;
   options.scale = Eigen::Vector3d::Constant(scale);
   return options;
 }
 
-std::string error_of(const TriangleMesh& mesh, const MassOptions& options = {}) {
+std::string error_of(const TriangleMesh& mesh, const MassOptions& options = strict()) {
   return tumble::testing::input_error_of([&] { analyze_mesh(mesh, options, "parts.stl"); },
                                          "the mesh");
 }
@@ -70,9 +71,10 @@ constexpr double kShared = 1.0 * 1.5 * 1.75;
 
 TEST(PartOverlap, CrossingBoxesAreAnErrorNamingTheParts) {
   const std::string error = error_of(crossing_boxes());
-  EXPECT_THAT(error, AllOf(HasSubstr("parts.stl: parts 1 and 2 of 2 overlap (their surfaces "
-                                     "cross), so their shared volume ("),
-                           HasSubstr("would count twice; give --allow-overlap to accept it")));
+  EXPECT_THAT(
+      error, AllOf(HasSubstr("parts.stl: parts 1 and 2 of 2 overlap (their surfaces "
+                             "cross), so their shared volume ("),
+                   HasSubstr("would count twice; give --overlap union to take their exact union")));
   EXPECT_NEAR(stated_volume(error), kShared, 1e-5 * kShared);  // printed to 6 digits
 }
 
@@ -232,6 +234,14 @@ TEST(PartOverlap, ASelfIntersectingPartIsAnError) {
     EXPECT_THAT(error_of(mesh, strict(scale)), HasSubstr("part 1 of 1 intersects itself ("));
     const MeshReport report = analyze_mesh(mesh, allowing(scale), "fused.stl");
     EXPECT_THAT(report.warnings, Contains(HasSubstr("intersects itself")));
+    // --overlap union (the default) refuses it too, saying why: the exact union needs parts
+    // free of self-intersections.
+    MassOptions united = allowing(scale);
+    united.overlap = OverlapMode::kUnion;
+    EXPECT_THAT(error_of(mesh, united),
+                AllOf(HasSubstr("part 1 of 1 intersects itself ("),
+                      HasSubstr("their exact union cannot be computed (it needs closed, outward "
+                                "parts free of self-intersections): give --overlap sum")));
   }
 }
 

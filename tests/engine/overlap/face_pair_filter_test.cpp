@@ -1,4 +1,4 @@
-// The overlap checks' fast paths (engine/geometry/src/face_pairs.hpp: region certificates, the
+// The overlap checks' fast paths (engine/overlap/src/face_pairs.hpp: region certificates, the
 // certified floating-point filter, the grid, the threads) against the exact predicates alone
 // (FacePairMethod::kExact) and CGAL's box intersection with exact predicates for every pair
 // (kReference): on near-degenerate meshes, where the filter must defer to the exact path, and
@@ -13,8 +13,8 @@
 #include <string>
 
 #include "engine/geometry/mesh_topology.hpp"
-#include "engine/geometry/part_overlap.hpp"
 #include "engine/geometry/primitive_meshes.hpp"
+#include "engine/overlap/part_overlap.hpp"
 
 namespace tumble::engine::detail {
 namespace {
