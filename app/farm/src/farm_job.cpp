@@ -138,6 +138,7 @@ const std::vector<FarmedCommand>& farmed_commands() {
         {"--mass", true},
         {"--scale", true},
         {"--shell", true},
+        {"--overlap", true},
         {"--allow-overlap", false},
         {"--skip-overlap-checks", false}}},
   };
