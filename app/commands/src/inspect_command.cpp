@@ -9,6 +9,7 @@
 #include "app/inspect/inspect_run.hpp"
 #include "app/support/exit_status.hpp"
 #include "base/errors.hpp"
+#include "inertia_option.hpp"
 
 namespace tumble::app {
 namespace {
@@ -114,6 +115,7 @@ CLI::App& add_inspect_command(CLI::App& cli, InspectOptions& options) {
   inspect.add_option_function<double>(
       "--shell", [&](double value) { options.mass.shell_thickness = value; },
       "Thin-shell mode: THICKNESS in metres; area-weighted, for sheets and open surfaces");
+  add_inertia_option(inspect, options.mass.inertia);
   inspect.add_flag("--allow-overlap", options.mass.allow_overlap,
                    "Accept parts that overlap, intersect themselves or repeat (their shared "
                    "volume counts twice; a warning says how much); by default an error");

@@ -97,7 +97,7 @@ MeshGeometry mesh_geom(const Attributes& a, const Model& model, const std::strin
                                   "' gives its vertices inline, which tumble does not read "
                                   "(give it a file)");
   }
-  return MeshGeometry{it->second.file, it->second.scale};
+  return MeshGeometry{it->second.file, it->second.scale, std::nullopt};
 }
 
 /// The geom's frame from pos and its orientation (fromto sets it in primitive_geom instead).
