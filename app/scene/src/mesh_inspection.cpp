@@ -93,7 +93,7 @@ nlohmann::json report_to_json(const engine::MeshReport& report) {
       {"non_manifold_edges", report.non_manifold_edges},
       {"flipped", report.flipped},
       {"shell", report.shell},
-      {"inertia", engine::inertia_method_name(report.method)},
+      {"method", engine::inertia_method_name(report.method)},
       {"volume", report.volume},
       {"mass", mp.mass},
       {"density", report.density},

@@ -185,6 +185,14 @@ void parse_body_matter(const Field& field, BodyDescription& body) {
     if (!mesh) allow->fail("\"allow_overlap\" applies to a mesh only");
     body.allow_overlap = allow->boolean();
   }
+  if (auto method = field.find("inertia_method")) {
+    if (!mesh) method->fail("\"inertia_method\" applies to a mesh only");
+    const std::string name = method->string();
+    const auto parsed = engine::parse_inertia_method(name);
+    if (!parsed)
+      method->fail("expected \"exact\", \"convex\", \"shell\" or \"auto\", got \"" + name + "\"");
+    body.inertia_method = *parsed;
+  }
 }
 
 void parse_initial_state(const Field& field, BodyDescription& body) {
@@ -219,8 +227,9 @@ void parse_loads(const Field& field, BodyDescription& body) {
 BodyDescription parse_body(const Field& field, std::size_t index,
                            const std::filesystem::path& folder) {
   field.expect_object({"name", "mesh", "shape", "inertia", "mass", "density", "scale",
-                       "allow_overlap", "position", "orientation", "velocity", "angular_velocity",
-                       "angular_velocity_frame", "pivot", "torque", "torque_frame", "spring"});
+                       "allow_overlap", "inertia_method", "position", "orientation", "velocity",
+                       "angular_velocity", "angular_velocity_frame", "pivot", "torque",
+                       "torque_frame", "spring"});
   BodyDescription body;
   parse_body_name(field, index, body);
   parse_body_shape(field, folder, body);

@@ -53,6 +53,8 @@ struct BodyDescription {
   std::optional<double> density;                     ///< kg/m^3 (mesh or shape only)
   double scale = 1.0;                                ///< mesh units to metres (mesh only)
   bool allow_overlap = false;  ///< accept overlapping parts of the mesh (MassOptions)
+  /// How the mesh becomes inertia ("inertia_method"; shell needs "mass": mass over area).
+  engine::InertiaMethod inertia_method = engine::InertiaMethod::exact;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();               ///< centre of mass, world, m
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  ///< body to world, unit
   std::optional<Eigen::Vector3d> velocity;  ///< of the centre of mass (free bodies)
@@ -92,6 +94,7 @@ struct SceneDescription {
 /// [I1, I2, I3]} or {"tensor": [[..], [..], [..]]}); with a mesh or a shape exactly one of
 /// "mass" and "density", with an inertia "mass"; "scale" (mesh only, positive);
 /// "allow_overlap" (mesh only, boolean: accept overlapping parts, engine::MassOptions);
+/// "inertia_method" (mesh only: "exact", "convex", "shell" or "auto", as inspect --inertia);
 /// "position", "orientation" ([w, x, y, z], any non-zero quaternion, normalised),
 /// "velocity" (not with "pivot"), "angular_velocity", "angular_velocity_frame" ("world" by
 /// default or "body"), "pivot", "torque", "torque_frame", "spring" ({"anchor", "attach",
