@@ -194,3 +194,22 @@ def test_shell_mode_is_named_and_equals_the_command_line(cli_json, tmp_path):
     assert shell.method == "shell"
     assert shell.to_dict() == dict(cli_json("inspect", obj, "--shell", "0.01"), method="shell")
     assert shell.volume == pytest.approx(6 * 0.01, rel=1e-12)
+
+
+def test_convex_and_auto_name_the_hull_and_equal_the_command_line(cli_json, tmp_path):
+    vertices, faces = box_arrays((1.0, 2.0, 3.0))
+    open_faces = faces[2:]  # one face of the box (two triangles) removed: exact refuses it
+    with pytest.raises(tumble.InputError, match="the surface is open"):
+        tumble.mass_properties(vertices, open_faces)
+    hull = tumble.mass_properties(vertices, open_faces, density=2.0, inertia="convex")
+    assert hull.method == "convex"
+    assert hull.mass == pytest.approx(2.0 * 6.0, rel=1e-12)  # the whole box's volume
+    fallback = tumble.mass_properties(vertices, open_faces, density=2.0, inertia="auto")
+    assert fallback.method == "convex"
+    assert any("exact inertia refused" in w for w in fallback.warnings)
+    obj = tmp_path / "cube.obj"
+    write_obj(obj, vertices, faces)
+    convex = tumble.inspect(obj, inertia="convex")
+    assert convex.to_dict() == cli_json("inspect", obj, "--inertia", "convex")
+    with pytest.raises(tumble.InputError, match="expected 'exact', 'convex', 'shell' or 'auto'"):
+        tumble.inspect(obj, inertia="legacy")
