@@ -214,3 +214,22 @@ def test_overlap_keyword_takes_the_union_the_sum_or_refuses():
         tumble.mass_properties(*both, overlap="merge")
     with pytest.raises(tumble.InputError, match="allow_overlap: True is overlap='sum'"):
         tumble.mass_properties(*both, overlap="refuse", allow_overlap=True)
+
+
+def test_convex_and_auto_name_the_hull_and_equal_the_command_line(cli_json, tmp_path):
+    vertices, faces = box_arrays((1.0, 2.0, 3.0))
+    open_faces = faces[2:]  # one face of the box (two triangles) removed: exact refuses it
+    with pytest.raises(tumble.InputError, match="the surface is open"):
+        tumble.mass_properties(vertices, open_faces)
+    hull = tumble.mass_properties(vertices, open_faces, density=2.0, inertia="convex")
+    assert hull.method == "convex"
+    assert hull.mass == pytest.approx(2.0 * 6.0, rel=1e-12)  # the whole box's volume
+    fallback = tumble.mass_properties(vertices, open_faces, density=2.0, inertia="auto")
+    assert fallback.method == "convex"
+    assert any("exact inertia refused" in w for w in fallback.warnings)
+    obj = tmp_path / "cube.obj"
+    write_obj(obj, vertices, faces)
+    convex = tumble.inspect(obj, inertia="convex")
+    assert convex.to_dict() == cli_json("inspect", obj, "--inertia", "convex")
+    with pytest.raises(tumble.InputError, match="expected 'exact', 'convex', 'shell' or 'auto'"):
+        tumble.inspect(obj, inertia="legacy")

@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/support/exit_status.hpp"
+#include "inertia_option.hpp"
 #include "overlap_option.hpp"
 
 namespace tumble::app {
@@ -54,6 +55,17 @@ CLI::App& add_inertials_command(CLI::App& cli, InertialsOptions& options) {
       ->check(CLI::IsMember({"mesh", "principal"}))
       ->option_text("mesh|principal");
   add_overlap_options(command, options.compute.overlap);
+  add_inertia_option(command, options.compute.inertia);
+  command
+      .add_option_function<double>(
+          "--shell",
+          [&](double value) {
+            options.compute.shell_thickness = value;
+            options.compute.inertia = engine::InertiaMethod::shell;
+          },
+          "Meshes as thin shells of THICKNESS metres (implies --inertia shell; without it a "
+          "shell's density is per area, kg/m^2)")
+      ->check(CLI::PositiveNumber);
   command.add_flag("--json", options.json, "Print the comparison as JSON");
   command.add_option("-o,--output", options.output,
                      "Write the robot file with each computed inertial in place of the stated "

@@ -9,6 +9,7 @@
 #include "app/inspect/inspect_run.hpp"
 #include "app/support/exit_status.hpp"
 #include "base/errors.hpp"
+#include "inertia_option.hpp"
 #include "overlap_option.hpp"
 
 namespace tumble::app {
@@ -115,6 +116,7 @@ CLI::App& add_inspect_command(CLI::App& cli, InspectOptions& options) {
   inspect.add_option_function<double>(
       "--shell", [&](double value) { options.mass.shell_thickness = value; },
       "Thin-shell mode: THICKNESS in metres; area-weighted, for sheets and open surfaces");
+  add_inertia_option(inspect, options.mass.inertia);
   add_overlap_options(inspect, options.mass.overlap);
   inspect.add_flag_callback(
       "--skip-overlap-checks", [&options] { options.mass.check_overlap = false; },

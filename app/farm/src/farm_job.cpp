@@ -139,6 +139,7 @@ const std::vector<FarmedCommand>& farmed_commands() {
         {"--scale", true},
         {"--shell", true},
         {"--overlap", true},
+        {"--inertia", true},
         {"--allow-overlap", false},
         {"--skip-overlap-checks", false}}},
   };

@@ -31,6 +31,7 @@ json inspect_job(const InspectOptions& options, const std::vector<InspectInput>&
             {"mass", optional_number(mass.mass)},
             {"scale", {mass.scale.x(), mass.scale.y(), mass.scale.z()}},
             {"shell", optional_number(mass.shell_thickness)},
+            {"inertia", engine::inertia_method_name(mass.inertia)},
             {"overlap", engine::overlap_mode_name(mass.overlap)},
             {"recursive", options.recursive}}}};
 }

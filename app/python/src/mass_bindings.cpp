@@ -23,7 +23,7 @@ namespace {
 
 /// How the mass properties were computed, as every output names it.
 std::string method_of(const engine::MeshReport& report) {
-  return report.shell ? "shell" : "exact";
+  return engine::inertia_method_name(report.method);
 }
 
 /// The options every mass call shares, as the command line's flags give them.
@@ -31,17 +31,20 @@ engine::MassOptions mass_options(const std::optional<double>& density,
                                  const std::optional<double>& mass, const py::object& scale,
                                  const std::optional<double>& shell, const std::string& inertia,
                                  engine::OverlapMode overlap) {
-  if (inertia != "exact" && inertia != "shell") {
-    throw_input_error("inertia: expected 'exact' or 'shell', got '" + inertia + "'");
+  const std::optional<engine::InertiaMethod> method = engine::parse_inertia_method(inertia);
+  if (!method) {
+    throw_input_error("inertia: expected 'exact', 'convex', 'shell' or 'auto', got '" + inertia +
+                      "'");
   }
-  if (inertia == "shell" && !shell) {
-    throw_input_error("inertia: 'shell' needs shell=THICKNESS (metres)");
+  if (*method == engine::InertiaMethod::shell && !shell && !mass) {
+    throw_input_error("inertia: 'shell' needs shell=THICKNESS (metres) or mass=M (kg)");
   }
   if (density && mass) throw_input_error("density: give either a density or a mass, not both");
   engine::MassOptions options;
   options.density = density;
   options.mass = mass;
   options.shell_thickness = shell;
+  options.inertia = *method;
   options.overlap = overlap;
   if (py::isinstance<py::float_>(scale) || py::isinstance<py::int_>(scale)) {
     options.scale = Eigen::Vector3d::Constant(scale.cast<double>());
@@ -314,10 +317,12 @@ void bind_mass_functions(py::module_& module) {
 
 density: kg/m^3 (default 1000, water); mass: kg, total (excludes density); scale: file units
 to metres, one factor or (sx, sy, sz) (0.001 for millimetres); shell: thickness in metres for
-a thin shell of the surface; inertia: "exact" (a closed mesh) or "shell"; overlap: parts that
-overlap, nest facing the same way or repeat are "union" (their exact union, the default; a
-warning states the shared volume), "sum" (each counted whole) or "refuse" (an error), as
---overlap; allow_overlap=True: the same as overlap="sum".
+a thin shell of the surface; inertia: "exact" (a closed mesh), "convex" (the convex hull's
+solid), "shell" (with shell= or mass=) or "auto" (exact, else convex with a warning); the
+result's method says which was used; overlap: parts that overlap, nest facing the same way or
+repeat are "union" (their exact union, the default; a warning states the shared volume), "sum"
+(each counted whole) or "refuse" (an error), as --overlap; allow_overlap=True: the same as
+overlap="sum".
 Raises tumble.InputError (a ValueError) with the command line's one-line message.)doc");
 
   module.def(

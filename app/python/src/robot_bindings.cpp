@@ -34,7 +34,7 @@ app::robot::PackagePaths package_paths_of(const py::dict& given) {
 
 app::InertialsReport robot_inertials(const std::string& path, const std::string& geometry,
                                      std::optional<double> density, const py::dict& packages,
-                                     engine::OverlapMode overlap) {
+                                     engine::OverlapMode overlap, const std::string& inertia) {
   app::robot::ReadOptions read;
   if (geometry == "collision") {
     read.from = app::robot::GeometrySource::collision;
@@ -50,6 +50,11 @@ app::InertialsReport robot_inertials(const std::string& path, const std::string&
   app::robot::ComputeOptions compute;
   compute.density = density;
   compute.overlap = overlap;
+  const std::optional<engine::InertiaMethod> method = engine::parse_inertia_method(inertia);
+  if (!method || *method == engine::InertiaMethod::shell) {
+    throw_input_error("inertia: expected 'exact', 'convex' or 'auto', got '" + inertia + "'");
+  }
+  compute.inertia = *method;
   py::gil_scoped_release release;
   return naming_files({path}, [&] { return app::compute_inertials(path, read, compute); });
 }
@@ -138,21 +143,23 @@ void bind_robot(py::module_& module) {
       "inertials",
       [](const py::object& robot, const std::string& geometry, std::optional<double> density,
          const py::dict& package_paths, const std::optional<std::string>& overlap,
-         bool allow_overlap) {
+         bool allow_overlap, const std::string& inertia) {
         const std::string path = py::str(py::module_::import("os").attr("fspath")(robot));
         return robot_inertials(path, geometry, density, package_paths,
-                               overlap_mode_of(overlap, allow_overlap));
+                               overlap_mode_of(overlap, allow_overlap), inertia);
       },
       py::arg("robot"), py::kw_only(), py::arg("geometry") = "collision",
       py::arg("density") = py::none(), py::arg("package_paths") = py::dict(),
       py::arg("overlap") = py::none(), py::arg("allow_overlap") = false,
+      py::arg("inertia") = "exact",
       R"doc(Each link's inertial of a robot file from its geometry, as `tumble inertials ROBOT`.
 
 robot: a .urdf, .sdf/.world or MJCF .xml path; geometry: "collision" (default) or "visual"
 (--from); density: kg/m^3 for every link (default: keep each link's stated mass, 1000 for a
 link stating none); package_paths: {NAME: DIR} for package://NAME/ (--package-path NAME=DIR,
-looked at before ROS_PACKAGE_PATH); overlap, allow_overlap: as inspect's. Returns RobotInertials; a
-link whose geometry fails is in its errors (not raised); a bad file raises tumble.InputError.)doc");
+looked at before ROS_PACKAGE_PATH); overlap, allow_overlap: as inspect's; inertia: "exact",
+"convex" or "auto" (--inertia; each link's computed["method"] names the one used). Returns
+RobotInertials; a link whose geometry fails is in its errors (not raised); a bad file raises tumble.InputError.)doc");
 }
 
 }  // namespace tumble::python

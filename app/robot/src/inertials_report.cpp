@@ -118,6 +118,8 @@ nlohmann::json link_json(const LinkComparison& link, double tolerance, bool chec
   if (const auto& c = link.result.computed) {
     out["computed"] = {{"mass", c->mass},
                        {"mass_from_density", link.result.mass_from_density},
+                       {"method", robot::methods_text(link.result.methods)},
+                       {"methods", link.result.methods},
                        {"center_of_mass", vector_json(c->center_of_mass)},
                        {"inertia", matrix_json(c->inertia)},
                        {"principal_moments", vector_json(moments_of(c->inertia))}};
@@ -193,6 +195,7 @@ std::string format_comparison(const robot::Robot& robot, const std::vector<LinkC
     }
     const auto* s = link.stated ? &*link.stated : nullptr;
     const auto& c = link.result.computed;
+    if (c) out += "  inertia method: " + robot::methods_text(link.result.methods) + "\n";
     out += row("", "stated",
                c ? (link.result.mass_from_density ? "computed (density)" : "computed") : "computed",
                "relative difference");
@@ -321,12 +324,15 @@ InertialsReport inertials_report(const InertialsOptions& options) {
 
 std::string rewritten_inertials(const InertialsReport& report, robot::InertialFrame frame) {
   std::vector<std::optional<engine::MassProperties>> inertials;
+  std::vector<std::string> comments;
   for (const LinkComparison& link : report.links) {
     inertials.push_back(link.result.computed
                             ? std::optional(written_inertial(*link.result.computed))
                             : std::nullopt);
+    comments.push_back("inertial computed by tumble from the " + report.source +
+                       " geometry; inertia method: " + robot::methods_text(link.result.methods));
   }
-  return robot::rewritten_text(report.robot, inertials, frame);
+  return robot::rewritten_text(report.robot, inertials, frame, comments);
 }
 
 void write_inertials(const InertialsReport& report, const std::filesystem::path& output,

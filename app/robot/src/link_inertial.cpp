@@ -14,9 +14,13 @@ namespace {
 
 constexpr double kDefaultDensity = 1000.0;  // kg/m^3, water
 
+/// A shell with no thickness takes the density per area: a nominal thickness of 1 m.
+constexpr double kAreaDensityThickness = 1.0;
+
 engine::MassProperties mesh_properties(const MeshGeometry& mesh, double density,
                                        std::optional<double> mass, engine::OverlapMode overlap,
-                                       std::vector<std::string>* notes) {
+                                       std::vector<std::string>* notes, const MeshMethod& method,
+                                       std::string* used) {
   engine::MassOptions options;
   if (mass) {
     options.mass = mass;
@@ -25,20 +29,43 @@ engine::MassProperties mesh_properties(const MeshGeometry& mesh, double density,
   }
   options.scale = mesh.scale;
   options.overlap = overlap;
+  options.inertia = mesh.inertia.value_or(method.inertia);
+  if (options.inertia == engine::InertiaMethod::shell) {
+    options.shell_thickness =
+        mesh.inertia ? std::optional<double>(kAreaDensityThickness) : method.shell_thickness;
+    if (!options.shell_thickness && !mass) options.shell_thickness = kAreaDensityThickness;
+  }
   const engine::MeshReport report = inspect_file(mesh.file, options);
   if (notes) {
     for (const std::string& warning : report.warnings) {
       notes->push_back(mesh.file.string() + ": " + warning);
     }
+    if (mesh.inertia) {
+      notes->push_back(mesh.file.string() + ": inertia method " +
+                       engine::inertia_method_name(*mesh.inertia) + " as the file asks");
+    }
   }
+  if (used) *used = engine::inertia_method_name(report.method);
   return report.mass_properties;
 }
 
 }  // namespace
 
+std::string methods_text(const std::vector<std::string>& methods) {
+  std::vector<std::string> distinct;
+  std::string out;
+  for (const std::string& method : methods) {
+    if (std::find(distinct.begin(), distinct.end(), method) != distinct.end()) continue;
+    out += (distinct.empty() ? "" : ", ") + method;
+    distinct.push_back(method);
+  }
+  return distinct.empty() ? "none" : out;
+}
+
 engine::MassProperties geometry_mass_properties(const Geometry& geometry, double density,
                                                 engine::OverlapMode overlap,
-                                                std::vector<std::string>* notes) {
+                                                std::vector<std::string>* notes,
+                                                const MeshMethod& method, std::string* used) {
   const double rho = geometry.density.value_or(density);
   engine::MassProperties local;
   try {
@@ -46,8 +73,9 @@ engine::MassProperties geometry_mass_properties(const Geometry& geometry, double
         [&](const auto& shape) {
           using T = std::decay_t<decltype(shape)>;
           if constexpr (std::is_same_v<T, MeshGeometry>) {
-            return mesh_properties(shape, rho, geometry.mass, overlap, notes);
+            return mesh_properties(shape, rho, geometry.mass, overlap, notes, method, used);
           } else {
+            if (used) *used = "primitive";
             return geometry.mass ? engine::mass_properties_of_mass(shape, *geometry.mass)
                                  : engine::mass_properties(shape, rho);
           }
@@ -72,9 +100,13 @@ LinkInertial compute_link_inertial(const Link& link, const ComputeOptions& optio
   const bool keep_mass = !options.density && stated_mass > 0.0 && std::isfinite(stated_mass);
   const double density = options.density.value_or(kDefaultDensity);
   std::vector<engine::MassProperties> parts;
+  const MeshMethod method{options.inertia, options.shell_thickness};
   try {
     for (const Geometry& geometry : link.geometries) {
-      parts.push_back(geometry_mass_properties(geometry, density, options.overlap, &out.notes));
+      std::string used;
+      parts.push_back(
+          geometry_mass_properties(geometry, density, options.overlap, &out.notes, method, &used));
+      out.methods.push_back(used);
     }
   } catch (const InputError& error) {
     out.error = error.what();

@@ -85,6 +85,24 @@ engine::Shape primitive_geom(const Attributes& a, const std::string& type, const
   return shape;
 }
 
+/// A <mesh>'s inertia attribute (MuJoCo 3): exact, convex and shell are followed; legacy,
+/// MuJoCo's own approximation, is noted and the method asked for on the command line used.
+void read_mesh_inertia(const Attributes& a, const Model& model, const std::string& where,
+                       MeshAsset& out) {
+  const std::optional<std::string> value = a.get("inertia");
+  if (!value) return;
+  if (*value == "legacy") {
+    out.legacy = true;
+    return;
+  }
+  const std::optional<engine::InertiaMethod> method = engine::parse_inertia_method(*value);
+  if (!method || *method == engine::InertiaMethod::automatic) {
+    model.source.fail(
+        a.node, where + ": inertia: expected convex, exact, legacy or shell, got '" + *value + "'");
+  }
+  out.inertia = method;
+}
+
 MeshGeometry mesh_geom(const Attributes& a, const Model& model, const std::string& where) {
   const std::optional<std::string> name = a.get("mesh");
   if (!name) model.source.fail(a.node, where + ": mesh: a mesh geom needs a mesh attribute");
@@ -97,7 +115,15 @@ MeshGeometry mesh_geom(const Attributes& a, const Model& model, const std::strin
                                   "' gives its vertices inline, which tumble does not read "
                                   "(give it a file)");
   }
-  return MeshGeometry{it->second.file, it->second.scale};
+  std::optional<engine::InertiaMethod> inertia = it->second.inertia;
+  if (const std::optional<std::string> shell = a.get("shellinertia")) {
+    if (*shell != "true" && *shell != "false") {
+      model.source.fail(a.node,
+                        where + ": shellinertia: expected true or false, got '" + *shell + "'");
+    }
+    if (*shell == "true") inertia = engine::InertiaMethod::shell;
+  }
+  return MeshGeometry{it->second.file, it->second.scale, inertia};
 }
 
 /// The geom's frame from pos and its orientation (fromto sets it in primitive_geom instead).
@@ -140,6 +166,7 @@ void read_mesh_assets(pugi::xml_node root, Model& model) {
             parse_numbers(*scale, 3, 3, model.source, mesh, where, "scale");
         out.scale = Eigen::Vector3d(v[0], v[1], v[2]);
       }
+      read_mesh_inertia(a, model, where, out);
       model.meshes[name] = out;
     }
   }
@@ -184,6 +211,12 @@ GeomRead read_geom(pugi::xml_node node, const std::string& class_name, const Mod
   if (type == "mesh") {
     if (a.get("fromto")) model.source.fail(node, where + ": fromto: a mesh geom takes no fromto");
     geometry.shape = mesh_geom(a, model, where);
+    const auto asset = model.meshes.find(a.get("mesh").value_or(""));
+    if (asset != model.meshes.end() && asset->second.legacy) {
+      out.note = where + ": mesh '" + asset->first +
+                 "' asks for inertia=\"legacy\", MuJoCo's approximation, which tumble does not "
+                 "compute: the inertia method given (--inertia, default exact) is used instead";
+    }
   } else {
     geometry.shape = primitive_geom(a, type, model, where, geometry.pose);
   }

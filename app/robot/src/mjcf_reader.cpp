@@ -69,6 +69,14 @@ void read_compiler_element(pugi::xml_node c, const mjcf::Source& source, mjcf::C
     }
     out.strippath = value == "true";
   }
+  if (const pugi::xml_attribute a = c.attribute("inertiafromgeom")) {
+    const std::string value = a.value();
+    if (value != "true" && value != "false" && value != "auto") {
+      source.fail(c,
+                  "compiler: inertiafromgeom: expected true, false or auto, got '" + value + "'");
+    }
+    out.inertiafromgeom = value;
+  }
   if (const pugi::xml_attribute a = c.attribute("meshdir")) meshdir = a.value();
   if (const pugi::xml_attribute a = c.attribute("assetdir")) assetdir = a.value();
 }
@@ -177,6 +185,11 @@ void read_body(pugi::xml_node body, const std::string& inherited_class, Walk& wa
   if (inertials.size() > 1) source.fail(inertials[1], where + ": has two inertial elements");
   const std::string& text = walk.robot.text;
   if (!inertials.empty()) {
+    if (walk.model.compiler.inertiafromgeom == "true") {
+      link.notes.push_back(
+          "the compiler's inertiafromgeom=\"true\": MuJoCo ignores this "
+          "<inertial> and uses the one computed from the geoms");
+    }
     link.stated = read_inertial(inertials[0], walk.model, where);
     link.inertial_bytes =
         element_bytes(text, static_cast<std::size_t>(inertials[0].offset_debug())).whole;

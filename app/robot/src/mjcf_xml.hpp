@@ -34,6 +34,8 @@ struct Compiler {
   bool strippath = false;         ///< keep only the file name of mesh paths
   int group_first = 0;            ///< inertiagrouprange: geoms of other groups have no mass
   int group_last = 5;
+  /// inertiafromgeom: "true" (MuJoCo ignores every <inertial>), "false" or "auto" (default).
+  std::string inertiafromgeom = "auto";
 };
 
 /// Attribute name to value, as a default class gives them to one kind of element.

@@ -34,12 +34,21 @@ std::string indent_step(const Link& link) {
   return link.child_indent.find('\t') != std::string::npos ? "\t" : "  ";
 }
 
+/// `text` as an XML comment and a line break to `indent`; "--" may not appear inside one.
+std::string comment_line(std::string text, const std::string& indent) {
+  for (std::size_t at = text.find("--"); at != std::string::npos; at = text.find("--", at)) {
+    text.replace(at, 2, "- -");
+  }
+  return "<!-- " + text + " -->\n" + indent;
+}
+
 }  // namespace
 
 std::string rewritten_text(const Robot& robot,
                            const std::vector<std::optional<engine::MassProperties>>& inertials,
-                           InertialFrame frame) {
-  if (inertials.size() != robot.links.size()) {
+                           InertialFrame frame, const std::vector<std::string>& comments) {
+  if (inertials.size() != robot.links.size() ||
+      (!comments.empty() && comments.size() != robot.links.size())) {
     throw std::invalid_argument("rewritten_text: one inertial per link expected");
   }
   std::vector<Edit> edits;
@@ -50,12 +59,13 @@ std::string rewritten_text(const Robot& robot,
     if (link.inertial_bytes) {
       const std::string indent = line_indent(robot.text, link.inertial_bytes->begin);
       edits.push_back({*link.inertial_bytes,
-                       inertial_element(robot.format, *inertials[i], frame, indent, step)});
+                       (comments.empty() ? "" : comment_line(comments[i], indent)) +
+                           inertial_element(robot.format, *inertials[i], frame, indent, step)});
     } else if (link.insert_at) {
-      edits.push_back(
-          {{*link.insert_at, *link.insert_at},
-           "\n" + link.child_indent +
-               inertial_element(robot.format, *inertials[i], frame, link.child_indent, step)});
+      const std::string& indent = link.child_indent;
+      edits.push_back({{*link.insert_at, *link.insert_at},
+                       "\n" + indent + (comments.empty() ? "" : comment_line(comments[i], indent)) +
+                           inertial_element(robot.format, *inertials[i], frame, indent, step)});
     } else {
       throw InputError(robot.file.string() + ": link '" + link.name +
                        "': has no place for an inertial element (it is a self-closing tag)");

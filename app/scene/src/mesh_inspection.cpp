@@ -48,6 +48,19 @@ std::string with_thousands(std::size_t value) {
   return out;
 }
 
+/// The method that gave the numbers, and why when exact was refused.
+std::string method_text(const engine::MeshReport& report) {
+  switch (report.method) {
+    case engine::InertiaMethod::convex:
+      return report.fallback_reason ? "convex (hull's solid; exact refused the mesh)"
+                                    : "convex (the convex hull's solid)";
+    case engine::InertiaMethod::shell:
+      return "shell (the surface, uniform areal density)";
+    default:
+      return "exact (the enclosed solid)";
+  }
+}
+
 }  // namespace
 
 engine::MeshReport inspect_file(const std::filesystem::path& file, const engine::MassOptions& mass,
@@ -80,6 +93,7 @@ nlohmann::json report_to_json(const engine::MeshReport& report) {
       {"non_manifold_edges", report.non_manifold_edges},
       {"flipped", report.flipped},
       {"shell", report.shell},
+      {"method", engine::inertia_method_name(report.method)},
       {"volume", report.volume},
       {"mass", mp.mass},
       {"density", report.density},
@@ -93,12 +107,20 @@ nlohmann::json report_to_json(const engine::MeshReport& report) {
   if (report.shell) {
     out["thickness"] = report.thickness;
     out["area"] = report.area;
+    out["areal_density"] = report.areal_density;
   } else {
     // How overlapping parts were counted (--overlap), and what their union took out.
     out["overlap"] = engine::overlap_mode_name(report.overlap);
     out["united_parts"] = report.united_parts;
     out["shared_volume"] = report.shared_volume;
   }
+  if (report.method == engine::InertiaMethod::convex) {
+    out["hull_volume"] = report.hull_volume;
+    out["hull_triangles"] = report.hull_triangles;
+    out["enclosed_volume"] =
+        report.enclosed_volume ? nlohmann::json(*report.enclosed_volume) : nlohmann::json(nullptr);
+  }
+  if (report.fallback_reason) out["exact_refused"] = *report.fallback_reason;
   return out;
 }
 
@@ -110,6 +132,7 @@ std::string format_report(const engine::MeshReport& report) {
         << "\n";
   };
   out << report.source << (report.shell ? "  (thin shell)" : "") << "\n";
+  row("inertia", method_text(report));
   row("triangles",
       with_thousands(report.triangles) + " in " + std::to_string(report.parts) +
           (report.parts == 1 ? " part" : " parts") +
@@ -122,9 +145,16 @@ std::string format_report(const engine::MeshReport& report) {
   row("size", vector_text(size, length) + " m");
   if (report.shell) {
     row("area", fixed("%.9g", report.area) + " m^2");
-    row("thickness", fixed("%.9g", report.thickness) + " m");
+    if (report.thickness > 0.0) row("thickness", fixed("%.9g", report.thickness) + " m");
+    row("areal density", fixed("%.9g", report.areal_density) + " kg/m^2");
   }
-  row("volume", fixed("%.9g", report.volume) + " m^3");
+  if (report.method == engine::InertiaMethod::convex && report.enclosed_volume) {
+    row("enclosed volume", fixed("%.9g", *report.enclosed_volume) + " m^3 (the mesh's own solid)");
+  }
+  if (!report.shell || report.thickness > 0.0) {
+    row("volume", fixed("%.9g", report.volume) + " m^3");
+    row("density", fixed("%.9g", report.density) + " kg/m^3");
+  }
   if (!report.shell && (report.parts > 1 || report.united_parts > 0)) {
     row("overlap",
         std::string(engine::overlap_mode_name(report.overlap)) +
@@ -133,7 +163,6 @@ std::string format_report(const engine::MeshReport& report) {
                        fixed("%.9g", report.shared_volume) + " m^3 counted once"
                  : ""));
   }
-  row("density", fixed("%.9g", report.density) + " kg/m^3");
   row("mass", fixed("%.9g", mp.mass) + " kg");
   row("centre of mass", vector_text(mp.center_of_mass, length) + " m");
   out << "  inertia about the centre of mass, file axes (kg m^2)\n";
@@ -150,7 +179,11 @@ std::string format_report(const engine::MeshReport& report) {
   const auto check = [&](bool ok, const std::string& text) {
     out << "    " << (ok ? "ok    " : "warn  ") << text << "\n";
   };
-  if (!report.shell) {
+  if (report.method == engine::InertiaMethod::convex) {
+    check(report.boundary_edges == 0,
+          "convex hull of the vertices: closure and winding not required (" +
+              with_thousands(report.boundary_edges) + " boundary edges)");
+  } else if (!report.shell) {
     check(true, "closed surface (0 boundary edges)");
     check(true, "consistent winding");
     check(!report.flipped,

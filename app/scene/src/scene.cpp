@@ -193,6 +193,14 @@ void parse_body_matter(const Field& field, BodyDescription& body) {
     if (!mode) overlap->fail("expected \"union\", \"sum\" or \"refuse\", got \"" + name + "\"");
     body.overlap = *mode;
   }
+  if (auto method = field.find("inertia_method")) {
+    if (!mesh) method->fail("\"inertia_method\" applies to a mesh only");
+    const std::string name = method->string();
+    const auto parsed = engine::parse_inertia_method(name);
+    if (!parsed)
+      method->fail("expected \"exact\", \"convex\", \"shell\" or \"auto\", got \"" + name + "\"");
+    body.inertia_method = *parsed;
+  }
 }
 
 void parse_initial_state(const Field& field, BodyDescription& body) {
@@ -227,8 +235,8 @@ void parse_loads(const Field& field, BodyDescription& body) {
 BodyDescription parse_body(const Field& field, std::size_t index,
                            const std::filesystem::path& folder) {
   field.expect_object({"name", "mesh", "shape", "inertia", "mass", "density", "scale",
-                       "allow_overlap", "overlap", "position", "orientation", "velocity",
-                       "angular_velocity", "angular_velocity_frame", "pivot", "torque",
+                       "allow_overlap", "overlap", "inertia_method", "position", "orientation",
+                       "velocity", "angular_velocity", "angular_velocity_frame", "pivot", "torque",
                        "torque_frame", "spring"});
   BodyDescription body;
   parse_body_name(field, index, body);

@@ -44,6 +44,7 @@ engine::MeshReport import_body_mesh(const BodyDescription& body, const std::stri
   options.density = body.density;
   options.scale = Eigen::Vector3d::Constant(body.scale);
   options.overlap = body.overlap;
+  options.inertia = body.inertia_method;
   engine::MeshReport report;
   try {
     report = inspect_file(*body.mesh, options, shape);

@@ -17,6 +17,7 @@
 #include "base/errors.hpp"
 #include "engine/geometry/mesh_topology.hpp"
 #include "engine/overlap/part_overlap.hpp"
+#include "hull_inertia.hpp"
 #include "overlap_policy.hpp"
 #include "part_union.hpp"
 
@@ -55,6 +56,16 @@ void check_options(const MassOptions& options, const std::string& source) {
   if (options.density) positive("density", *options.density);
   if (options.mass) positive("mass", *options.mass);
   if (options.shell_thickness) positive("shell thickness", *options.shell_thickness);
+  const InertiaMethod method = options.inertia;
+  if (options.shell_thickness && method != InertiaMethod::exact && method != InertiaMethod::shell) {
+    fail(source, "a shell thickness applies to the shell inertia method, not to " +
+                     inertia_method_name(method));
+  }
+  if (method == InertiaMethod::shell && !options.shell_thickness && !options.mass) {
+    fail(source,
+         "the shell inertia method needs a thickness (--shell T) or a total mass "
+         "(--mass M)");
+  }
   for (int axis = 0; axis < 3; ++axis) {
     const double factor = options.scale[axis];
     if (!std::isfinite(factor) || factor == 0.0) {
@@ -229,17 +240,25 @@ TopologyPass check_topology(const TriangleMesh& mesh, const Eigen::Vector3d& ref
   return pass;
 }
 
-/// Thin shell: area-weighted, orientation and closure do not matter.
+/// Thin shell: area-weighted, orientation and closure do not matter. Without a thickness the
+/// mass alone gives the areal density (mass / area); volume and density are then not known (0).
 void shell_properties(const TriangleMesh& mesh, const Eigen::Vector3d& reference,
                       const MassOptions& options, MeshReport& report) {
-  report.thickness = *options.shell_thickness;
   const MomentIntegrals integrals = surface_integrals(mesh, reference);
+  report.method = InertiaMethod::shell;
   report.area = integrals.measure;
-  report.volume = report.area * report.thickness;
   if (!(report.area > 0.0)) fail(report.source, "has zero surface area");
-  report.density = options.mass ? *options.mass / report.volume : options.density.value_or(1000.0);
-  // Surface density rho * t turns area integrals into mass integrals.
-  report.mass_properties = mass_properties(integrals, reference, report.density * report.thickness);
+  if (options.shell_thickness) {
+    report.thickness = *options.shell_thickness;
+    report.volume = report.area * report.thickness;
+    report.density =
+        options.mass ? *options.mass / report.volume : options.density.value_or(1000.0);
+    report.areal_density = report.density * report.thickness;
+  } else {
+    report.areal_density = *options.mass / report.area;
+  }
+  // The areal density (rho * t) turns area integrals into mass integrals.
+  report.mass_properties = mass_properties(integrals, reference, report.areal_density);
 }
 
 /// A closed surface must have no boundary, pair up the uses of every edge shared by more than
@@ -341,6 +360,46 @@ void solid_properties(TriangleMesh& mesh, const Eigen::Vector3d& reference,
   report.mass_properties = mass_properties(integrals, reference, report.density);
 }
 
+/// The solid the mesh encloses, when exact accepts it (closed, consistent, no refused
+/// overlap): the convex method states the hull's volume beside it. The mesh is not changed.
+std::optional<double> enclosed_volume(const TriangleMesh& mesh, const Eigen::Vector3d& reference,
+                                      const MassOptions& options, TopologyPass& pass,
+                                      const MeshReport& report) {
+  const Topology& topology = pass.topology;
+  if (!topology.closed() || topology.inconsistent_edges > 0) return std::nullopt;
+  TriangleMesh copy = mesh;
+  MeshReport trial = report;
+  try {
+    solid_properties(copy, reference, options, pass, trial);
+  } catch (const InputError&) {
+    return std::nullopt;
+  }
+  return trial.volume;
+}
+
+/// The reason in an InputError's message, without the leading "SOURCE: ".
+std::string refusal_reason(const InputError& error, const std::string& source) {
+  const std::string message = error.what();
+  const std::string prefix = source + ": ";
+  return message.rfind(prefix, 0) == 0 ? message.substr(prefix.size()) : message;
+}
+
+/// Exact; where exact refuses the mesh, the convex hull, with a warning naming the reason.
+void exact_or_convex(TriangleMesh& mesh, const Eigen::Vector3d& reference,
+                     const MassOptions& options, TopologyPass& pass, MeshReport& report) {
+  const MeshReport before = report;
+  try {
+    solid_properties(mesh, reference, options, pass, report);
+    return;
+  } catch (const InputError& error) {
+    report = before;
+    report.fallback_reason = refusal_reason(error, report.source);
+  }
+  report.warnings.push_back("exact inertia refused (" + *report.fallback_reason +
+                            "): used the convex hull's solid instead");
+  detail::convex_properties(mesh, reference, options, std::nullopt, report);
+}
+
 }  // namespace
 
 const char* overlap_mode_name(OverlapMode mode) {
@@ -368,17 +427,28 @@ MeshReport analyze_mesh(TriangleMesh mesh, const MassOptions& options, const std
   MeshReport report;
   report.source = source;
   report.input_triangles = mesh.triangles.size();
-  report.shell = options.shell_thickness.has_value();
+  const InertiaMethod method = options.shell_thickness ? InertiaMethod::shell : options.inertia;
+  report.shell = method == InertiaMethod::shell;
   if (mesh.triangles.empty()) fail(source, "contains no triangles");
 
   scale_positions(mesh, options.scale, source);                 // metres, finite
   weld_and_clean(mesh, distinct_positions, report);             // welded, no degenerate triangles
   const Eigen::Vector3d reference = bound(mesh, report);        // bounding-box centre
   TopologyPass pass = check_topology(mesh, reference, report);  // edges and parts
-  if (report.shell) {
-    shell_properties(mesh, reference, options, report);
-  } else {
-    solid_properties(mesh, reference, options, pass, report);
+  switch (method) {
+    case InertiaMethod::shell:
+      shell_properties(mesh, reference, options, report);
+      break;
+    case InertiaMethod::convex:
+      detail::convex_properties(mesh, reference, options,
+                                enclosed_volume(mesh, reference, options, pass, report), report);
+      break;
+    case InertiaMethod::automatic:
+      exact_or_convex(mesh, reference, options, pass, report);
+      break;
+    case InertiaMethod::exact:
+      solid_properties(mesh, reference, options, pass, report);
+      break;
   }
 
   // Principal frame, and the checks any rigid body must pass.

@@ -91,7 +91,9 @@ TEST_F(InertialsSdfCommand, RoundTripChecksClean) {
   ASSERT_EQ(write.status, 0) << write.err;
   const std::string out = read_text(dir_ / "out.sdf");
   EXPECT_THAT(out, HasSubstr("<!-- a two-box link and a nested model -->"));
-  EXPECT_THAT(out, HasSubstr("      <link name=\"ball\">\n        <inertial>\n          <pose>"));
+  EXPECT_THAT(out, HasSubstr("      <link name=\"ball\">\n        <!-- inertial computed by tumble "
+                             "from the collision geometry; inertia method: primitive -->\n"
+                             "        <inertial>\n          <pose>"));
   const auto check = inertials("--check --tolerance 1e-9 " + path("out.sdf"));
   EXPECT_EQ(check.status, 0) << check.out;
 }

@@ -13,6 +13,7 @@
 
 #include <Eigen/Geometry>
 
+#include "engine/mass/inertia_method.hpp"
 #include "engine/mass/mass_properties.hpp"
 #include "engine/mass/primitive_shapes.hpp"
 
@@ -31,6 +32,10 @@ enum class GeometrySource { collision, visual };
 struct MeshGeometry {
   std::filesystem::path file;
   Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+  /// MJCF only: the method the file asks for (<mesh inertia=...>, shellinertia, or the
+  /// compiler's); it overrides ComputeOptions::inertia. Shell: the density is per area, as
+  /// MuJoCo reads it.
+  std::optional<engine::InertiaMethod> inertia;
 };
 
 /// One geometry of a link.

@@ -54,6 +54,8 @@ struct BodyDescription {
   double scale = 1.0;                                ///< mesh units to metres (mesh only)
   /// Overlapping parts of the mesh: their union (default), sum or an error (MassOptions).
   engine::OverlapMode overlap = engine::OverlapMode::kUnion;
+  /// How the mesh becomes inertia ("inertia_method"; shell needs "mass": mass over area).
+  engine::InertiaMethod inertia_method = engine::InertiaMethod::exact;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();               ///< centre of mass, world, m
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  ///< body to world, unit
   std::optional<Eigen::Vector3d> velocity;  ///< of the centre of mass (free bodies)
@@ -94,6 +96,7 @@ struct SceneDescription {
 /// "mass" and "density", with an inertia "mass"; "scale" (mesh only, positive);
 /// "overlap" (mesh only: "union" (default), "sum" or "refuse", engine::OverlapMode) or its old
 /// alias "allow_overlap" (mesh only, boolean: true is "sum", false "refuse");
+/// "inertia_method" (mesh only: "exact", "convex", "shell" or "auto", as inspect --inertia);
 /// "position", "orientation" ([w, x, y, z], any non-zero quaternion, normalised),
 /// "velocity" (not with "pivot"), "angular_velocity", "angular_velocity_frame" ("world" by
 /// default or "body"), "pivot", "torque", "torque_frame", "spring" ({"anchor", "attach",

@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "engine/geometry/triangle_mesh.hpp"
+#include "engine/mass/inertia_method.hpp"
 #include "engine/mass/mass_properties.hpp"
 #include "engine/mass/principal_frame.hpp"
 
@@ -41,6 +42,9 @@ struct MassOptions {
   /// intersects itself is counted as wound with kSum and refused otherwise (the exact union
   /// needs parts free of self-intersections).
   OverlapMode overlap = OverlapMode::kUnion;
+  /// How the geometry becomes inertia; a shell thickness alone implies InertiaMethod::shell.
+  /// The shell method needs `shell_thickness` or `mass` (then the areal density is mass/area).
+  InertiaMethod inertia = InertiaMethod::exact;
   /// Test the parts for self-intersections, repeated faces and crossings (exact; the default).
   /// Off, none of them is found: self-intersections and repeats count without a warning, and
   /// parts that cross may be taken as nested; whether a part lies inside another (a cavity, or
@@ -65,12 +69,20 @@ struct MeshReport {
   std::size_t non_manifold_edges = 0;
   bool watertight = false;
   bool shell = false;
-  bool flipped = false;            ///< all faces were inverted and have been flipped
-  double thickness = 0.0;          ///< m (shell mode)
-  double volume = 0.0;             ///< m^3 (shell mode: area times thickness)
-  double area = 0.0;               ///< m^2 (shell mode only)
-  double density = 0.0;            ///< kg/m^3
-  MassProperties mass_properties;  ///< inertia about the centre of mass, file axes
+  /// The method that gave the mass properties: exact, convex or shell (never automatic).
+  InertiaMethod method = InertiaMethod::exact;
+  /// Why exact was refused when InertiaMethod::automatic fell back to convex.
+  std::optional<std::string> fallback_reason;
+  std::optional<double> enclosed_volume;  ///< m^3 (convex: the mesh's own solid, when closed)
+  double hull_volume = 0.0;               ///< m^3 (convex only)
+  std::size_t hull_triangles = 0;         ///< convex only
+  double areal_density = 0.0;             ///< kg/m^2 (shell mode)
+  bool flipped = false;                   ///< all faces were inverted and have been flipped
+  double thickness = 0.0;                 ///< m (shell mode; 0 when given by mass alone)
+  double volume = 0.0;                    ///< m^3 (shell mode: area times thickness; convex: hull)
+  double area = 0.0;                      ///< m^2 (shell mode only)
+  double density = 0.0;                   ///< kg/m^3
+  MassProperties mass_properties;         ///< inertia about the centre of mass, file axes
   PrincipalFrame principal;
   Eigen::Vector3d bounds_min = Eigen::Vector3d::Zero();
   Eigen::Vector3d bounds_max = Eigen::Vector3d::Zero();

@@ -1,0 +1,24 @@
+#pragma once
+/// @file How a mesh's geometry becomes a body's inertia: the exact solid it encloses, its convex
+/// hull's solid, its surface as a thin shell, or exact with a named fallback to the hull.
+
+#include <optional>
+#include <string>
+
+namespace tumble::engine {
+
+/// The inertia method asked for (`--inertia`, a scene's "inertia", MJCF's mesh inertia=).
+enum class InertiaMethod {
+  exact,      ///< the solid a closed, consistently wound surface encloses (refuses the rest)
+  convex,     ///< the convex hull of the vertices as a solid (any mesh spanning a volume)
+  shell,      ///< the surface as a thin shell of uniform areal density
+  automatic,  ///< exact; where exact refuses, convex with a warning naming the reason
+};
+
+/// "exact", "convex", "shell" or "auto".
+std::string inertia_method_name(InertiaMethod method);
+
+/// The method named `name` ("exact", "convex", "shell", "auto"); nothing for any other name.
+std::optional<InertiaMethod> parse_inertia_method(const std::string& name);
+
+}  // namespace tumble::engine
