@@ -67,6 +67,13 @@ struct ByteRange {
 /// One link (URDF, SDF) or body (MJCF).
 struct Link {
   std::string name;
+  /// The link's frame in the model's frame in the zero configuration (every joint at zero):
+  /// URDF, the chain of joint origins from the root; SDF, the link's pose; MJCF, the nested
+  /// bodies' pos/quat. Identity for a root link.
+  Eigen::Isometry3d frame = Eigen::Isometry3d::Identity();
+  /// The parent link's name (URDF/SDF: the joint whose child it is; MJCF: the enclosing body);
+  /// empty for a root.
+  std::string parent;
   std::vector<Geometry> geometries;
   /// The inertial the file states, if it has an inertial element.
   std::optional<StatedInertial> stated;
