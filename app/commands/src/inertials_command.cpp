@@ -1,7 +1,12 @@
 // `tumble inertials`.
 #include "app/commands/inertials_command.hpp"
 
+#include <cmath>
+#include <exception>
 #include <ostream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -10,6 +15,44 @@
 #include "overlap_option.hpp"
 
 namespace tumble::app {
+namespace {
+
+/// A positive finite number of `option`'s value `text`, or throws CLI::ValidationError.
+double positive_value(const std::string& option, const std::string& text,
+                      const std::string& value) {
+  std::size_t used = 0;
+  double number = 0.0;
+  try {
+    number = std::stod(value, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != value.size() || !std::isfinite(number) || number <= 0.0) {
+    throw CLI::ValidationError(option,
+                               "'" + text + "': expected a positive number, got '" + value + "'");
+  }
+  return number;
+}
+
+/// LINK=VALUE of `option`.
+std::pair<std::string, double> link_value(const std::string& option, const std::string& text) {
+  const std::size_t equals = text.rfind('=');
+  if (equals == std::string::npos || equals == 0) {
+    throw CLI::ValidationError(option, "'" + text + "': expected LINK=VALUE");
+  }
+  return {text.substr(0, equals), positive_value(option, text, text.substr(equals + 1))};
+}
+
+/// --density RHO or --density LINK=RHO.
+void add_density(const std::string& text, robot::ComputeOptions& compute) {
+  if (text.find('=') == std::string::npos) {
+    compute.density = positive_value("--density", text, text);
+  } else {
+    compute.link_densities.push_back(link_value("--density", text));
+  }
+}
+
+}  // namespace
 
 CLI::App& add_inertials_command(CLI::App& cli, InertialsOptions& options) {
   CLI::App& command = *cli.add_subcommand(
@@ -32,11 +75,36 @@ CLI::App& add_inertials_command(CLI::App& cli, InertialsOptions& options) {
       ->check(CLI::IsMember({"collision", "visual"}))
       ->option_text("collision|visual");
   command
+      .add_option_function<std::vector<std::string>>(
+          "--density",
+          [&](const std::vector<std::string>& values) {
+            for (const std::string& value : values) add_density(value, options.compute);
+          },
+          "RHO: kg/m^3 for every link: the masses follow from the volumes (default: keep each "
+          "link's stated mass; 1000 for a link stating none). LINK=RHO (repeatable): that "
+          "link's density, over the file's own (SDF collision, MJCF geom) and over RHO")
+      ->allow_extra_args(false)
+      ->option_text("RHO|LINK=RHO");
+  command
+      .add_option_function<std::vector<std::string>>(
+          "--mass",
+          [&](const std::vector<std::string>& values) {
+            for (const std::string& value : values) {
+              options.compute.link_masses.push_back(link_value("--mass", value));
+            }
+          },
+          "LINK=M (repeatable): that link's weighed mass in kg; its centre of mass and inertia "
+          "follow from the geometry, the inertia scaled to M")
+      ->allow_extra_args(false)
+      ->option_text("LINK=M");
+  command
       .add_option_function<double>(
-          "--density", [&](double value) { options.compute.density = value; },
-          "kg/m^3 for every link: the masses follow from the volumes (default: keep each "
-          "link's stated mass; 1000 for a link stating none)")
-      ->check(CLI::PositiveNumber);
+          "--total-mass", [&](double value) { options.compute.total_mass = value; },
+          "The whole robot's weighed mass in kg, spread over the links in proportion to their "
+          "masses from densities (links with --mass, and links without geometry that keep a "
+          "stated mass, are subtracted first)")
+      ->check(CLI::PositiveNumber)
+      ->option_text("M");
   command
       .add_option("--package-path", options.package_paths,
                   "Where package://NAME/ (and SDF model://NAME/) lead; repeatable, "

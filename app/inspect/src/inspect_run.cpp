@@ -11,7 +11,7 @@
 #include "app/inspect/inspect_inputs.hpp"
 #include "app/inspect/inspect_output.hpp"
 #include "app/inspect/inspect_parts.hpp"
-#include "app/inspect/unit_hint.hpp"
+#include "app/scene/unit_hint.hpp"
 #include "app/scene/mesh_inspection.hpp"
 #include "app/support/csv_writer.hpp"
 #include "app/support/exit_status.hpp"

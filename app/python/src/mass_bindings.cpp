@@ -9,7 +9,7 @@
 #include <string>
 #include <variant>
 
-#include "app/inspect/unit_hint.hpp"
+#include "app/scene/unit_hint.hpp"
 #include "app/robot/inertial_xml.hpp"
 #include "app/scene/mesh_inspection.hpp"
 #include "engine/mass/mesh_analysis.hpp"

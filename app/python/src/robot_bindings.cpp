@@ -104,6 +104,12 @@ inertials in place of the stated ones, every other byte kept.
             return json_to_python(app::comparison_to_json(
                 r.robot, r.links, r.source, kDefaultInertialsTolerance, false)["links"]);
           })
+      .def_property_readonly(
+          "total",
+          [](const app::InertialsReport& r) {
+            return json_to_python(app::comparison_to_json(
+                r.robot, {}, r.source, kDefaultInertialsTolerance, false, r.total)["total"]);
+          })
       .def_property_readonly("errors", &app::InertialsReport::errors)
       .def("failing", &failing_links, py::arg("tolerance") = kDefaultInertialsTolerance,
            "Names of the links whose stated mass, centre of mass or inertia differ from the "
@@ -113,7 +119,7 @@ inertials in place of the stated ones, every other byte kept.
           [](const app::InertialsReport& r, std::optional<double> tolerance) {
             return json_to_python(app::comparison_to_json(
                 r.robot, r.links, r.source, tolerance.value_or(kDefaultInertialsTolerance),
-                tolerance.has_value()));
+                tolerance.has_value(), r.total));
           },
           py::arg("tolerance") = py::none())
       .def(

@@ -118,6 +118,7 @@ nlohmann::json link_json(const LinkComparison& link, double tolerance, bool chec
   if (const auto& c = link.result.computed) {
     out["computed"] = {{"mass", c->mass},
                        {"mass_from_density", link.result.mass_from_density},
+                       {"mass_from", link.result.mass_from},
                        {"method", robot::methods_text(link.result.methods)},
                        {"methods", link.result.methods},
                        {"center_of_mass", vector_json(c->center_of_mass)},
@@ -150,6 +151,36 @@ std::string check_summary(const std::vector<LinkComparison>& links, double toler
          " links differ by more than " + bound + " or cannot be compared: " + names + "\n";
 }
 
+/// The whole robot's block of the table.
+std::string total_text(const std::optional<robot::RobotTotal>& total, std::size_t links) {
+  if (!total) return "\nwhole robot: no link has an inertial to add up\n";
+  const engine::MassProperties& p = total->properties;
+  std::string out = "\nwhole robot, zero configuration (" + std::to_string(total->counted) +
+                    " of " + std::to_string(links) + " links; the model's frame)\n";
+  const double size = std::sqrt(p.inertia.trace() / (2.0 * p.mass));
+  out += row("mass", numbers(Eigen::Matrix<double, 1, 1>(p.mass)), "", "");
+  out += row("centre of mass", numbers(p.center_of_mass, std::max(size, p.center_of_mass.norm())),
+             "", "");
+  out += row("moments", numbers(moments_of(p.inertia)), "", "");
+  out += row("inertia xx yy zz", numbers(p.inertia.diagonal()), "", "");
+  out += row("inertia xy xz yz", numbers(off_diagonal(p.inertia), p.inertia.norm()), "", "");
+  for (const std::string& name : total->left_out) {
+    out += "  note: link '" + name + "' has no inertial to add\n";
+  }
+  return out;
+}
+
+nlohmann::json total_json(const std::optional<robot::RobotTotal>& total) {
+  if (!total) return nullptr;
+  const engine::MassProperties& p = total->properties;
+  return {{"mass", p.mass},
+          {"center_of_mass", vector_json(p.center_of_mass)},
+          {"inertia", matrix_json(p.inertia)},
+          {"principal_moments", vector_json(moments_of(p.inertia))},
+          {"links", total->counted},
+          {"left_out", total->left_out}};
+}
+
 }  // namespace
 
 LinkComparison compare_link(const robot::Link& link, robot::LinkInertial result) {
@@ -161,6 +192,8 @@ LinkComparison compare_link(const robot::Link& link, robot::LinkInertial result)
   out.problems = stated_problems(link.stated);
   out.notes = link.notes;
   out.notes.insert(out.notes.end(), out.result.notes.begin(), out.result.notes.end());
+  out.auto_inertial = link.auto_inertial;
+  if (link.auto_inertial) out.problems.clear();
   if (!out.result.computed || !link.stated) return out;
   const engine::MassProperties& c = *out.result.computed;
   const robot::StatedInertial& s = *link.stated;
@@ -177,13 +210,14 @@ LinkComparison compare_link(const robot::Link& link, robot::LinkInertial result)
 
 bool within_tolerance(const LinkComparison& link, double tolerance) {
   if (link.result.error) return false;
-  if (!link.result.computed) return true;
+  if (!link.result.computed || link.auto_inertial) return true;
   if (!link.problems.empty() || !link.mass || !link.center_of_mass || !link.inertia) return false;
   return *link.mass <= tolerance && *link.center_of_mass <= tolerance && *link.inertia <= tolerance;
 }
 
 std::string format_comparison(const robot::Robot& robot, const std::vector<LinkComparison>& links,
-                              const std::string& source, double tolerance, bool check) {
+                              const std::string& source, double tolerance, bool check,
+                              const std::optional<robot::RobotTotal>& total) {
   std::string out = robot.file.string() + " (" + format_name(robot.format) + ", " +
                     std::to_string(links.size()) + " links, geometry from " + source + ")\n";
   for (const LinkComparison& link : links) {
@@ -196,8 +230,9 @@ std::string format_comparison(const robot::Robot& robot, const std::vector<LinkC
     const auto* s = link.stated ? &*link.stated : nullptr;
     const auto& c = link.result.computed;
     if (c) out += "  inertia method: " + robot::methods_text(link.result.methods) + "\n";
+    const std::string from = link.result.mass_from;
     out += row("", "stated",
-               c ? (link.result.mass_from_density ? "computed (density)" : "computed") : "computed",
+               c && !from.empty() && from != "stated" ? "computed (" + from + ")" : "computed",
                "relative difference");
     out += row("mass", s && s->mass ? numbers(Eigen::Matrix<double, 1, 1>(*s->mass)) : "-",
                c ? numbers(Eigen::Matrix<double, 1, 1>(c->mass)) : "-",
@@ -217,19 +252,22 @@ std::string format_comparison(const robot::Robot& robot, const std::vector<LinkC
     for (const std::string& problem : link.problems) out += "  ! " + problem + "\n";
     for (const std::string& note : link.notes) out += "  note: " + note + "\n";
   }
+  out += total_text(total, links.size());
   if (check) out += check_summary(links, tolerance);
   return out;
 }
 
 nlohmann::json comparison_to_json(const robot::Robot& robot,
                                   const std::vector<LinkComparison>& links,
-                                  const std::string& source, double tolerance, bool check) {
+                                  const std::string& source, double tolerance, bool check,
+                                  const std::optional<robot::RobotTotal>& total) {
   nlohmann::json out = {{"file", robot.file.string()},
                         {"format", format_name(robot.format)},
                         {"from", source},
                         {"links", nlohmann::json::array()}};
   for (const LinkComparison& link : links)
     out["links"].push_back(link_json(link, tolerance, check));
+  out["total"] = total_json(total);
   if (check) out["tolerance"] = tolerance;
   return out;
 }
@@ -308,11 +346,33 @@ InertialsReport compute_inertials(const std::filesystem::path& file, const robot
                                   const robot::ComputeOptions& compute) {
   InertialsReport report{robot::read_robot(file, read),
                          {},
-                         read.from == robot::GeometrySource::collision ? "collision" : "visual"};
+                         read.from == robot::GeometrySource::collision ? "collision" : "visual",
+                         std::nullopt};
+  robot::check_link_options(report.robot, compute);
+  std::vector<robot::LinkInertial> results;
   for (const robot::Link& link : report.robot.links) {
-    report.links.push_back(compare_link(link, robot::compute_link_inertial(link, compute)));
+    results.push_back(robot::compute_link_inertial(link, compute, report.robot.format));
   }
+  robot::spread_total_mass(report.robot.links, results, compute);
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    report.links.push_back(compare_link(report.robot.links[i], std::move(results[i])));
+  }
+  report.total = robot::robot_total(report.robot.links, final_inertials(report.links));
   return report;
+}
+
+std::vector<std::optional<engine::MassProperties>> final_inertials(
+    const std::vector<LinkComparison>& links) {
+  std::vector<std::optional<engine::MassProperties>> out;
+  for (const LinkComparison& link : links) {
+    std::optional<engine::MassProperties> inertial = link.result.computed;
+    const auto& s = link.stated;
+    if (!inertial && !link.result.error && s && s->mass && *s->mass > 0.0 && s->inertia) {
+      inertial = engine::MassProperties{*s->mass, s->center_of_mass, *s->inertia};
+    }
+    out.push_back(inertial);
+  }
+  return out;
 }
 
 InertialsReport inertials_report(const InertialsOptions& options) {
@@ -356,12 +416,12 @@ int write_inertials(const InertialsOptions& options, std::ostream& out, std::ost
   }
   if (options.json) {
     out << comparison_to_json(report.robot, report.links, report.source, options.tolerance,
-                              options.check)
+                              options.check, report.total)
                .dump(2)
         << "\n";
   } else {
     out << format_comparison(report.robot, report.links, report.source, options.tolerance,
-                             options.check);
+                             options.check, report.total);
   }
   if (report.failed()) {
     if (options.output) {

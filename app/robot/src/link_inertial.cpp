@@ -3,9 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <type_traits>
 
 #include "app/scene/mesh_inspection.hpp"
+#include "app/scene/unit_hint.hpp"
 #include "base/errors.hpp"
 #include "engine/mass/mesh_analysis.hpp"
 
@@ -16,6 +18,23 @@ constexpr double kDefaultDensity = 1000.0;  // kg/m^3, water
 
 /// A shell with no thickness takes the density per area: a nominal thickness of 1 m.
 constexpr double kAreaDensityThickness = 1.0;
+
+/// The scale a robot file of `format` gives a mesh, `factor` on every axis.
+std::string scale_attribute(RobotFormat format, double factor) {
+  char number[32];
+  std::snprintf(number, sizeof number, "%g", factor);
+  const std::string f = number;
+  const std::string three = f + " " + f + " " + f;
+  switch (format) {
+    case RobotFormat::urdf:
+      return "add scale=\"" + three + "\" to the <mesh>";
+    case RobotFormat::sdf:
+      return "add <scale>" + three + "</scale> to the <mesh>";
+    case RobotFormat::mjcf:
+      return "add scale=\"" + three + "\" to the asset's <mesh>";
+  }
+  return "";
+}
 
 engine::MassProperties mesh_properties(const MeshGeometry& mesh, double density,
                                        std::optional<double> mass, engine::OverlapMode overlap,
@@ -39,6 +58,10 @@ engine::MassProperties mesh_properties(const MeshGeometry& mesh, double density,
   if (notes) {
     for (const std::string& warning : report.warnings) {
       notes->push_back(mesh.file.string() + ": " + warning);
+    }
+    if (const auto factor = likely_unit_factor(report, mesh.scale); factor && method.hint_format) {
+      notes->push_back(mesh.file.string() + ": " + *unit_hint(report, mesh.scale) +
+                       "; in this file: " + scale_attribute(*method.hint_format, *factor));
     }
     if (mesh.inertia) {
       notes->push_back(mesh.file.string() + ": inertia method " +
@@ -87,7 +110,25 @@ engine::MassProperties geometry_mass_properties(const Geometry& geometry, double
   return local.rotated(geometry.pose.linear()).translated(geometry.pose.translation());
 }
 
-LinkInertial compute_link_inertial(const Link& link, const ComputeOptions& options) {
+namespace {
+
+/// The note on a link whose mass came from densities without --density: which were used.
+std::string density_note(const Link& link) {
+  if (link.auto_inertial) return "";
+  const auto own = [](const Geometry& g) { return g.density || g.mass; };
+  const bool all_own = std::all_of(link.geometries.begin(), link.geometries.end(), own);
+  const bool some_own = std::any_of(link.geometries.begin(), link.geometries.end(), own);
+  const std::string why = "states no usable mass (none, zero or negative): ";
+  return why + (all_own    ? "computed from its geometries' own densities and masses"
+                : some_own ? "computed from its geometries' own densities and masses, "
+                             "1000 kg/m^3 where one gives none (give --density)"
+                           : "filled with 1000 kg/m^3 (give --density)");
+}
+
+}  // namespace
+
+LinkInertial compute_link_inertial(const Link& link, const ComputeOptions& options,
+                                   RobotFormat format) {
   LinkInertial out;
   if (link.geometries.empty()) {
     out.notes.push_back(link.stated ? "no geometry: its inertial is kept as the file states it"
@@ -97,12 +138,21 @@ LinkInertial compute_link_inertial(const Link& link, const ComputeOptions& optio
   // The file's mass, when it is one (zero, negative or missing masses are flagged elsewhere).
   double stated_mass = 0.0;
   if (link.stated && link.stated->mass) stated_mass = *link.stated->mass;
-  const bool keep_mass = !options.density && stated_mass > 0.0 && std::isfinite(stated_mass);
+  const std::optional<double> link_density = value_for(options.link_densities, link.name);
+  const std::optional<double> weighed = value_for(options.link_masses, link.name);
+  const bool some_density = options.density || link_density || options.total_mass;
+  const bool keep_mass =
+      !some_density && !weighed && stated_mass > 0.0 && std::isfinite(stated_mass);
   const double density = options.density.value_or(kDefaultDensity);
   std::vector<engine::MassProperties> parts;
-  const MeshMethod method{options.inertia, options.shell_thickness};
+  const MeshMethod method{options.inertia, options.shell_thickness, format};
   try {
-    for (const Geometry& geometry : link.geometries) {
+    for (Geometry geometry : link.geometries) {
+      // --density LINK=RHO wins over the geometry's own density or mass.
+      if (link_density) {
+        geometry.density = link_density;
+        geometry.mass.reset();
+      }
       std::string used;
       parts.push_back(
           geometry_mass_properties(geometry, density, options.overlap, &out.notes, method, &used));
@@ -113,22 +163,14 @@ LinkInertial compute_link_inertial(const Link& link, const ComputeOptions& optio
     return out;
   }
   engine::MassProperties total = engine::combined(parts);
-  out.mass_from_density = !keep_mass;
-  if (keep_mass) {
-    const double factor = stated_mass / total.mass;
-    total.mass = stated_mass;
-    total.inertia *= factor;
-  } else if (!options.density) {
-    // MJCF geoms may give their own density or mass: then 1000 kg/m^3 is not what was used.
-    const bool all_own = std::all_of(link.geometries.begin(), link.geometries.end(),
-                                     [](const Geometry& g) { return g.density || g.mass; });
-    const bool some_own = std::any_of(link.geometries.begin(), link.geometries.end(),
-                                      [](const Geometry& g) { return g.density || g.mass; });
-    const std::string why = "states no usable mass (none, zero or negative): ";
-    out.notes.push_back(why + (all_own    ? "computed from its geoms' own densities and masses"
-                               : some_own ? "computed from its geoms' own densities and masses, "
-                                            "1000 kg/m^3 where a geom gives none (give --density)"
-                                          : "filled with 1000 kg/m^3 (give --density)"));
+  out.mass_from = keep_mass ? "stated" : weighed ? "--mass" : "density";
+  out.mass_from_density = out.mass_from == "density";
+  if (keep_mass || weighed) {
+    const double mass = weighed ? *weighed : stated_mass;
+    total.inertia *= mass / total.mass;
+    total.mass = mass;
+  } else if (!some_density) {
+    if (const std::string note = density_note(link); !note.empty()) out.notes.push_back(note);
   }
   out.computed = total;
   return out;

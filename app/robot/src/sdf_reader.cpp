@@ -132,7 +132,14 @@ Link read_link(const pugi::xml_node& node, const std::string& prefix, const Cont
   if (inertial && inertial.next_sibling("inertial")) {
     throw InputError(where + ": has more than one <inertial> element");
   }
-  if (inertial) link.stated = stated_inertial(inertial, local, where + ": inertial", link);
+  link.auto_inertial = inertial && std::string(inertial.attribute("auto").value()) == "true";
+  if (link.auto_inertial) {
+    link.notes.push_back(
+        "<inertial auto=\"true\">: computed from the collisions, each at its own density "
+        "(1000 kg/m^3 unless it gives one); the values it states are not used");
+  } else if (inertial) {
+    link.stated = stated_inertial(inertial, local, where + ": inertial", link);
+  }
   locate_inertial(link, context.text, node, inertial);
   const char* kind = context.options.from == GeometrySource::collision ? "collision" : "visual";
   std::size_t index = 0;
@@ -146,6 +153,9 @@ Link read_link(const pugi::xml_node& node, const std::string& prefix, const Cont
     const pugi::xml_node shape = element.child("geometry");
     if (!shape) throw InputError(at + ": has no <geometry>");
     geometry.pose = link_pose(element, local, at);
+    if (const std::optional<std::string> density = child_text(element, "density")) {
+      geometry.density = parse_positive(*density, at + ": density");
+    }
     auto read = geometry_shape(shape, at, context, link, geometry.where);
     if (!read) continue;
     geometry.shape = std::move(*read);

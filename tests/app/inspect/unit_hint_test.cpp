@@ -1,5 +1,5 @@
 // The unit hint of `tumble inspect`: which sizes get one, and what it says.
-#include "app/inspect/unit_hint.hpp"
+#include "app/scene/unit_hint.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

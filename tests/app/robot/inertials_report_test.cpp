@@ -79,12 +79,14 @@ TEST_F(InertialsReportTest, JsonIsWhatTheCommandPrints) {
   const auto command = testing::run_command(testing::tumble_executable() + " inertials --json " +
                                             (dir_ / "robot.urdf").string());
   ASSERT_EQ(command.status, 0) << command.err;
-  EXPECT_EQ(
-      comparison_to_json(report.robot, report.links, report.source, 1e-3, false).dump(2) + "\n",
-      command.out);
+  EXPECT_EQ(comparison_to_json(report.robot, report.links, report.source, 1e-3, false, report.total)
+                    .dump(2) +
+                "\n",
+            command.out);
   std::ostringstream out, err;
   EXPECT_EQ(write_inertials(options, out, err), 0);
-  EXPECT_EQ(out.str(), format_comparison(report.robot, report.links, report.source, 1e-3, false));
+  EXPECT_EQ(out.str(), format_comparison(report.robot, report.links, report.source, 1e-3, false,
+                                         report.total));
 }
 
 TEST_F(InertialsReportTest, MissingFileIsAnInputErrorNamingIt) {

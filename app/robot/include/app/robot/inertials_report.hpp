@@ -14,6 +14,7 @@
 #include "app/robot/inertial_xml.hpp"
 #include "app/robot/link_inertial.hpp"
 #include "app/robot/robot_model.hpp"
+#include "app/robot/robot_total.hpp"
 
 namespace tumble::app {
 
@@ -52,6 +53,8 @@ struct LinkComparison {
   std::optional<double> center_of_mass;
   std::optional<double> inertia;
   std::optional<double> moments;
+  /// SDF <inertial auto="true">: the computed inertial is the file's by definition.
+  bool auto_inertial = false;
 };
 
 /// The comparison for `link`, whose inertial came out as `result`.
@@ -62,14 +65,21 @@ LinkComparison compare_link(const robot::Link& link, robot::LinkInertial result)
 /// does not pass.
 bool within_tolerance(const LinkComparison& link, double tolerance);
 
-/// The table for people: a block per link.
+/// The table for people: a block per link, then the whole robot's `total` when given.
 std::string format_comparison(const robot::Robot& robot, const std::vector<LinkComparison>& links,
-                              const std::string& source, double tolerance, bool check);
+                              const std::string& source, double tolerance, bool check,
+                              const std::optional<robot::RobotTotal>& total = std::nullopt);
 
-/// The same as data: {"file", "format", "from", "links": [...]}.
+/// The same as data: {"file", "format", "from", "links": [...], "total": {...} or null}.
 nlohmann::json comparison_to_json(const robot::Robot& robot,
                                   const std::vector<LinkComparison>& links,
-                                  const std::string& source, double tolerance, bool check);
+                                  const std::string& source, double tolerance, bool check,
+                                  const std::optional<robot::RobotTotal>& total = std::nullopt);
+
+/// Each link's final inertial, in its frame: the computed one, else (a link without geometry)
+/// the stated one when it gives a positive mass and an inertia; unset otherwise.
+std::vector<std::optional<engine::MassProperties>> final_inertials(
+    const std::vector<LinkComparison>& links);
 
 /// A robot file's links compared: the robot as read and one comparison per link, in order.
 struct InertialsReport {
@@ -77,6 +87,9 @@ struct InertialsReport {
   std::vector<LinkComparison> links;
   /// "collision" or "visual": the geometry the inertials came from.
   std::string source;
+  /// The whole robot in its zero configuration, from each link's final inertial; unset when
+  /// no link has one.
+  std::optional<robot::RobotTotal> total;
   /// Whether some link's geometry failed (LinkComparison::result.error says why).
   bool failed() const;
   /// One line per failed link, "FILE: why", as the command prints them after "error: ".

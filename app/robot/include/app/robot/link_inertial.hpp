@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "app/robot/robot_model.hpp"
@@ -20,6 +21,15 @@ struct ComputeOptions {
   /// (water; MuJoCo's default too). MJCF geoms with their own density or mass keep them
   /// relative to each other either way.
   std::optional<double> density;
+  /// `--density LINK=RHO`: kg/m^3 for one link's geometries, over their own densities and
+  /// masses (SDF collision density, MJCF geom density or mass) and over `density`.
+  std::vector<std::pair<std::string, double>> link_densities;
+  /// `--mass LINK=M`: a link's weighed mass (kg); its centre of mass and inertia follow from
+  /// the geometry, the inertia scaled to this mass.
+  std::vector<std::pair<std::string, double>> link_masses;
+  /// `--total-mass M`: the whole robot's weighed mass (kg), spread by spread_total_mass over
+  /// the links in proportion to their masses computed from densities.
+  std::optional<double> total_mass;
   /// Overlapping parts within one mesh: their union (default), sum or an error (as `inspect
   /// --overlap`).
   engine::OverlapMode overlap = engine::OverlapMode::kUnion;
@@ -34,6 +44,9 @@ struct ComputeOptions {
 struct MeshMethod {
   engine::InertiaMethod inertia = engine::InertiaMethod::exact;
   std::optional<double> shell_thickness;
+  /// The robot file's format, to word the unit hint of a mesh whose size suggests another
+  /// unit than metres (the scale attribute to add); unset: no hint.
+  std::optional<RobotFormat> hint_format;
 };
 
 /// What came of one link.
@@ -46,6 +59,9 @@ struct LinkInertial {
   std::optional<std::string> error;
   /// True when the mass came from a density rather than from the file.
   bool mass_from_density = false;
+  /// Where the mass came from: "density", "stated" (the file's, kept), "--mass" or
+  /// "--total-mass".
+  std::string mass_from;
   /// Warnings of the meshes' checks and notes on the link, one sentence each.
   std::vector<std::string> notes;
   /// How each geometry's inertia was computed, in order: "exact", "convex", "shell" (meshes)
@@ -68,6 +84,24 @@ engine::MassProperties geometry_mass_properties(const Geometry& geometry, double
                                                 std::string* used = nullptr);
 
 /// The link's inertial from its geometries (never throws InputError: failures are `error`).
-LinkInertial compute_link_inertial(const Link& link, const ComputeOptions& options);
+/// `format` words the unit hint of a mesh whose size suggests millimetres (its scale attribute).
+LinkInertial compute_link_inertial(const Link& link, const ComputeOptions& options,
+                                   RobotFormat format = RobotFormat::urdf);
+
+/// The value `entries` gives for `name` (the last one given), or nothing.
+std::optional<double> value_for(const std::vector<std::pair<std::string, double>>& entries,
+                                const std::string& name);
+
+/// Throws InputError "--density 'NAME=...': no link 'NAME' in FILE" (or --mass) when a
+/// per-link option names no link of `robot`.
+void check_link_options(const Robot& robot, const ComputeOptions& options);
+
+/// Spreads `options.total_mass` over `results` (one per link of `links`, in order): links with
+/// a --mass, and links without geometry that keep a stated mass, are subtracted first; the
+/// rest is shared in proportion to the computed masses, each link's inertia scaled with its
+/// mass. Nothing when total_mass is unset. Throws InputError "--total-mass M: ..." when the
+/// fixed masses already reach it or no link is left to take the rest.
+void spread_total_mass(const std::vector<Link>& links, std::vector<LinkInertial>& results,
+                       const ComputeOptions& options);
 
 }  // namespace tumble::app::robot

@@ -45,7 +45,8 @@ struct Geometry {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   /// Where it is, for messages: "link 'arm' collision 1", "body 'hand' geom 'palm'".
   std::string where;
-  /// MJCF only: the geom's own density or mass, when the file gives one.
+  /// The geometry's own density (MJCF geom density, SDF <collision><density>) or mass (MJCF
+  /// geom mass), when the file gives one.
   std::optional<double> density;
   std::optional<double> mass;
 };
@@ -75,8 +76,12 @@ struct Link {
   /// empty for a root.
   std::string parent;
   std::vector<Geometry> geometries;
-  /// The inertial the file states, if it has an inertial element.
+  /// The inertial the file states, if it has an inertial element (unset for SDF's
+  /// <inertial auto="true">, whose values are not used).
   std::optional<StatedInertial> stated;
+  /// SDF <inertial auto="true"> (SDFormat 1.11): the inertial is the one computed from the
+  /// collisions, each at its own density, whatever values the element states.
+  bool auto_inertial = false;
   /// Where the inertial element is in the file's text, from its '<' to the end of its closing
   /// tag (or of "/>"); unset when the link has none.
   std::optional<ByteRange> inertial_bytes;

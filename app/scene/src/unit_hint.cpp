@@ -1,5 +1,6 @@
-// The unit hint of `tumble inspect`: a body 111 m long was most likely drawn in millimetres.
-#include "app/inspect/unit_hint.hpp"
+// The unit hint of `tumble inspect` and `tumble inertials`: a body 111 m long was most likely
+// drawn in millimetres.
+#include "app/scene/unit_hint.hpp"
 
 #include <array>
 #include <cmath>
@@ -17,6 +18,13 @@ bool plausible(double length) {
   return length >= kSmallest && length <= kLargest;
 }
 
+struct Unit {
+  const char* name;
+  double factor;
+};
+constexpr std::array<Unit, 3> kHintUnits = {
+    {{"millimetres", 0.001}, {"inches", 0.0254}, {"micrometres", 1e-6}}};
+
 /// Four significant digits: "111", "2000", "0.0254", "1e-06".
 std::string number(double value) {
   std::array<char, 32> text{};
@@ -32,14 +40,8 @@ std::optional<std::string> unit_hint(const engine::MeshReport& report,
   if (!std::isfinite(length) || length <= 0.0) return std::nullopt;
   const bool unscaled = scale.cwiseAbs() == Eigen::Vector3d::Ones();
   if (length > kLargest && unscaled) {
-    struct Unit {
-      const char* name;
-      double factor;
-    };
-    const std::array<Unit, 3> units = {
-        {{"millimetres", 0.001}, {"inches", 0.0254}, {"micrometres", 1e-6}}};
     std::string hint;
-    for (const Unit& unit : units) {
+    for (const Unit& unit : kHintUnits) {
       if (!plausible(length * unit.factor)) continue;
       hint +=
           std::string(hint.empty() ? "" : "; ") + unit.name + "? --scale " + number(unit.factor);
@@ -53,6 +55,17 @@ std::optional<std::string> unit_hint(const engine::MeshReport& report,
     const double file_length = length / scale.cwiseAbs().maxCoeff();
     if (plausible(file_length))
       return size + "the file may already be in metres: leave out --scale";
+  }
+  return std::nullopt;
+}
+
+std::optional<double> likely_unit_factor(const engine::MeshReport& report,
+                                         const Eigen::Vector3d& scale) {
+  const double length = (report.bounds_max - report.bounds_min).maxCoeff();
+  if (!std::isfinite(length) || length <= kLargest) return std::nullopt;
+  if (scale.cwiseAbs() != Eigen::Vector3d::Ones()) return std::nullopt;
+  for (const Unit& unit : kHintUnits) {
+    if (plausible(length * unit.factor)) return unit.factor;
   }
   return std::nullopt;
 }

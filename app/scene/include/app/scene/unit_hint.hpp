@@ -1,5 +1,6 @@
 #pragma once
-/// @file A note when a mesh's size suggests its file is not in the unit `--scale` assumed.
+/// @file A note when a mesh's size suggests its file is not in the unit `--scale` (or a robot
+/// file's mesh scale) assumed.
 
 #include <optional>
 #include <string>
@@ -20,5 +21,10 @@ namespace tumble::app {
 /// only that the body is under a millimetre and --scale converts a file not in metres.
 std::optional<std::string> unit_hint(const engine::MeshReport& report,
                                      const Eigen::Vector3d& scale);
+
+/// The factor to metres of the first unit unit_hint names for a body too large to be in
+/// metres (0.001 for 111 m), or nothing when it names none.
+std::optional<double> likely_unit_factor(const engine::MeshReport& report,
+                                         const Eigen::Vector3d& scale);
 
 }  // namespace tumble::app
