@@ -2,7 +2,10 @@
 // picks, then each link's inertial from its geometry when every mesh it names is one of the
 // small meshes in tests/fuzz/meshes (meshes anywhere else are not read, so the fuzzer cannot
 // wander into the machine's files), then the rewrite with those inertials, which must read
-// back (same links, the new inertials stated): a rewrite that breaks the file is a bug.
+// back (same links, the new inertials stated): a rewrite that breaks the file is a bug. The
+// whole robot's total in its zero configuration (link frames from joints, poses, nested
+// bodies) must be finite.
+#include <cmath>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -12,6 +15,7 @@
 #include "app/robot/link_inertial.hpp"
 #include "app/robot/rewrite.hpp"
 #include "app/robot/robot_model.hpp"
+#include "app/robot/robot_total.hpp"
 #include "base/errors.hpp"
 #include "fuzz_target.hpp"
 
@@ -59,6 +63,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (std::size_t i = 0; i < robot.links.size(); ++i) {
     if (!meshes_are_ours(robot.links[i])) continue;
     inertials[i] = compute_link_inertial(robot.links[i], {}).computed;
+  }
+  // The zero configuration's total: finite whenever some link has a mass.
+  if (const auto total = robot_total(robot.links, inertials)) {
+    if (!std::isfinite(total->properties.mass) || !total->properties.inertia.allFinite()) {
+      throw std::logic_error("the whole robot's total is not finite");
+    }
   }
   std::string rewritten;
   try {

@@ -60,8 +60,10 @@ engine::MassProperties mesh_properties(const MeshGeometry& mesh, double density,
       notes->push_back(mesh.file.string() + ": " + warning);
     }
     if (const auto factor = likely_unit_factor(report, mesh.scale); factor && method.hint_format) {
-      notes->push_back(mesh.file.string() + ": " + *unit_hint(report, mesh.scale) +
-                       "; in this file: " + scale_attribute(*method.hint_format, *factor));
+      char size[32];
+      std::snprintf(size, sizeof size, "%.4g", (report.bounds_max - report.bounds_min).maxCoeff());
+      notes->push_back(mesh.file.string() + ": size " + size + " m: is the file in " +
+                       unit_name(*factor) + "? " + scale_attribute(*method.hint_format, *factor));
     }
     if (mesh.inertia) {
       notes->push_back(mesh.file.string() + ": inertia method " +

@@ -70,4 +70,11 @@ std::optional<double> likely_unit_factor(const engine::MeshReport& report,
   return std::nullopt;
 }
 
+std::string unit_name(double factor) {
+  for (const Unit& unit : kHintUnits) {
+    if (unit.factor == factor) return unit.name;
+  }
+  return "units of " + number(factor) + " m";
+}
+
 }  // namespace tumble::app

@@ -175,3 +175,30 @@ TEST_F(WeighedMasses, WholeRobotTotalsInTheZeroConfiguration) {
 
 }  // namespace
 }  // namespace tumble::app
+
+namespace tumble::app {
+namespace {
+
+TEST(InertialsUnitHint, AMeshOf111MetresSuggestsTheScaleAttributeOfItsFormat) {
+  const auto dir = tumble::testing::fresh_directory("inertials_unit_hint");
+  tumble::testing::write_stl_file(dir / "part.stl",
+                                  tumble::testing::placed_box_stl({111, 40, 20}, {0, 0, 0}));
+  write_file(dir / "r.urdf", R"(<robot name="r"><link name="a"><collision>
+    <geometry><mesh filename="part.stl"/></geometry></collision></link></robot>
+)");
+  const InertialsReport out = compute_inertials(dir / "r.urdf", {}, {});
+  EXPECT_THAT(out.links[0].notes,
+              ::testing::Contains(HasSubstr("part.stl: size 111 m: is the file in millimetres? "
+                                            "add scale=\"0.001 0.001 0.001\" to the <mesh>")));
+  write_file(dir / "s.urdf", R"(<robot name="r"><link name="a"><collision>
+    <geometry><mesh filename="part.stl" scale="0.001 0.001 0.001"/></geometry></collision></link></robot>
+)");
+  const InertialsReport scaled = compute_inertials(dir / "s.urdf", {}, {});
+  for (const std::string& note : scaled.links[0].notes) {
+    EXPECT_THAT(note, ::testing::Not(HasSubstr("is the file in")));
+  }
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace tumble::app

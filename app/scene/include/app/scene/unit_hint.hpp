@@ -27,4 +27,7 @@ std::optional<std::string> unit_hint(const engine::MeshReport& report,
 std::optional<double> likely_unit_factor(const engine::MeshReport& report,
                                          const Eigen::Vector3d& scale);
 
+/// The name of the unit of `factor` as likely_unit_factor gives it ("millimetres").
+std::string unit_name(double factor);
+
 }  // namespace tumble::app
