@@ -120,3 +120,18 @@ def test_a_failed_link_is_reported_and_blocks_writing(cli, tmp_path):
     with pytest.raises(tumble.InputError, match="nothing written"):
         report.write(tmp_path / "out.urdf")
     assert not (tmp_path / "out.urdf").exists()
+
+
+def test_weighed_masses_are_the_command_lines(cli):
+    status, out, err = cli("inertials", *PACKAGE_FLAG, ARM / "arm.urdf", "--json", "--mass",
+                           "hand=0.5", "--density", "turret=2000", "--total-mass", "10")
+    assert status == 0, err
+    report = tumble.inertials(ARM / "arm.urdf", package_paths=PACKAGES, masses={"hand": 0.5},
+                              densities={"turret": 2000}, total_mass=10)
+    assert report.to_dict() == json.loads(out)
+    assert report.total == json.loads(out)["total"]
+    assert report.total["mass"] == pytest.approx(10, rel=1e-12)
+    hand = next(link for link in report.links if link["name"] == "hand")
+    assert hand["computed"]["mass"] == 0.5 and hand["computed"]["mass_from"] == "--mass"
+    with pytest.raises(tumble.InputError, match="--mass 'nope=1': no link 'nope'"):
+        tumble.inertials(ARM / "arm.urdf", package_paths=PACKAGES, masses={"nope": 1})

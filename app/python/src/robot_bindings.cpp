@@ -4,7 +4,9 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "app/robot/inertials_report.hpp"
@@ -32,9 +34,31 @@ app::robot::PackagePaths package_paths_of(const py::dict& given) {
   return out;
 }
 
+/// {LINK: value} of the keyword `name` as (link, positive value) pairs.
+std::vector<std::pair<std::string, double>> link_values(const py::dict& values, const char* name) {
+  std::vector<std::pair<std::string, double>> out;
+  for (const auto& [key, value] : values) {
+    const double number = py::cast<double>(value);
+    if (!(number > 0.0 && std::isfinite(number))) {
+      throw_input_error(std::string(name) + ": " + py::cast<std::string>(py::str(key)) +
+                        ": expected a positive number");
+    }
+    out.emplace_back(py::cast<std::string>(py::str(key)), number);
+  }
+  return out;
+}
+
+/// The weighed masses and per-link densities of tumble.inertials.
+struct WeighedOptions {
+  py::dict densities;
+  py::dict masses;
+  std::optional<double> total_mass;
+};
+
 app::InertialsReport robot_inertials(const std::string& path, const std::string& geometry,
                                      std::optional<double> density, const py::dict& packages,
-                                     engine::OverlapMode overlap, const std::string& inertia) {
+                                     engine::OverlapMode overlap, const std::string& inertia,
+                                     const WeighedOptions& weighed) {
   app::robot::ReadOptions read;
   if (geometry == "collision") {
     read.from = app::robot::GeometrySource::collision;
@@ -49,6 +73,12 @@ app::InertialsReport robot_inertials(const std::string& path, const std::string&
   read.packages = package_paths_of(packages);
   app::robot::ComputeOptions compute;
   compute.density = density;
+  compute.link_densities = link_values(weighed.densities, "densities");
+  compute.link_masses = link_values(weighed.masses, "masses");
+  if (weighed.total_mass && !(*weighed.total_mass > 0.0 && std::isfinite(*weighed.total_mass))) {
+    throw_input_error("total_mass: expected a positive number of kg");
+  }
+  compute.total_mass = weighed.total_mass;
   compute.overlap = overlap;
   const std::optional<engine::InertiaMethod> method = engine::parse_inertia_method(inertia);
   if (!method || *method == engine::InertiaMethod::shell) {
@@ -149,22 +179,27 @@ void bind_robot(py::module_& module) {
       "inertials",
       [](const py::object& robot, const std::string& geometry, std::optional<double> density,
          const py::dict& package_paths, const std::optional<std::string>& overlap,
-         bool allow_overlap, const std::string& inertia) {
+         bool allow_overlap, const std::string& inertia, const py::dict& densities,
+         const py::dict& masses, std::optional<double> total_mass) {
         const std::string path = py::str(py::module_::import("os").attr("fspath")(robot));
         return robot_inertials(path, geometry, density, package_paths,
-                               overlap_mode_of(overlap, allow_overlap), inertia);
+                               overlap_mode_of(overlap, allow_overlap), inertia,
+                               WeighedOptions{densities, masses, total_mass});
       },
       py::arg("robot"), py::kw_only(), py::arg("geometry") = "collision",
       py::arg("density") = py::none(), py::arg("package_paths") = py::dict(),
       py::arg("overlap") = py::none(), py::arg("allow_overlap") = false,
-      py::arg("inertia") = "exact",
+      py::arg("inertia") = "exact", py::arg("densities") = py::dict(),
+      py::arg("masses") = py::dict(), py::arg("total_mass") = py::none(),
       R"doc(Each link's inertial of a robot file from its geometry, as `tumble inertials ROBOT`.
 
 robot: a .urdf, .sdf/.world or MJCF .xml path; geometry: "collision" (default) or "visual"
 (--from); density: kg/m^3 for every link (default: keep each link's stated mass, 1000 for a
 link stating none); package_paths: {NAME: DIR} for package://NAME/ (--package-path NAME=DIR,
 looked at before ROS_PACKAGE_PATH); overlap, allow_overlap: as inspect's; inertia: "exact",
-"convex" or "auto" (--inertia; each link's computed["method"] names the one used). Returns
+"convex" or "auto" (--inertia; each link's computed["method"] names the one used); densities:
+{LINK: kg/m^3} (--density LINK=RHO); masses: {LINK: kg} (--mass LINK=M); total_mass: kg
+(--total-mass M); the report's `total` is the whole robot in its zero configuration. Returns
 RobotInertials; a link whose geometry fails is in its errors (not raised); a bad file raises tumble.InputError.)doc");
 }
 

@@ -55,13 +55,16 @@ class RobotInertials:
     geometry: Literal["collision", "visual"]
     links: list[dict[str, Any]]  # `tumble inertials --json`'s "links"
     errors: list[str]  # one line per link whose geometry failed
+    total: Optional[dict[str, Any]]  # the whole robot, zero configuration (--json's "total")
     def failing(self, tolerance: float = 1e-3) -> list[str]: ...
     def to_dict(self, tolerance: Optional[float] = None) -> dict[str, Any]: ...
     def write(self, path: PathLike, *, frame: Literal["mesh", "principal"] = "mesh") -> str: ...
 
 def inertials(robot: PathLike, *, geometry: Literal["collision", "visual"] = "collision",
               density: Optional[float] = None, package_paths: Mapping[str, PathLike] = ...,
-              allow_overlap: bool = False) -> RobotInertials: ...
+              allow_overlap: bool = False, inertia: str = "exact",
+              densities: Mapping[str, float] = ..., masses: Mapping[str, float] = ...,
+              total_mass: Optional[float] = None) -> RobotInertials: ...
 
 class Trajectory:
     t: Float  # (N,) s
