@@ -52,6 +52,41 @@ void add_density(const std::string& text, robot::ComputeOptions& compute) {
   }
 }
 
+/// --density RHO|LINK=RHO, --mass LINK=M, --total-mass M.
+void add_weighed_mass_options(CLI::App& command, robot::ComputeOptions& compute) {
+  command
+      .add_option_function<std::vector<std::string>>(
+          "--density",
+          [&](const std::vector<std::string>& values) {
+            for (const std::string& value : values) add_density(value, compute);
+          },
+          "RHO: kg/m^3 for every link: the masses follow from the volumes (default: keep each "
+          "link's stated mass; 1000 for a link stating none). LINK=RHO (repeatable): that "
+          "link's density, over the file's own (SDF collision, MJCF geom) and over RHO")
+      ->allow_extra_args(false)
+      ->option_text("RHO|LINK=RHO");
+  command
+      .add_option_function<std::vector<std::string>>(
+          "--mass",
+          [&](const std::vector<std::string>& values) {
+            for (const std::string& value : values) {
+              compute.link_masses.push_back(link_value("--mass", value));
+            }
+          },
+          "LINK=M (repeatable): that link's weighed mass in kg; its centre of mass and inertia "
+          "follow from the geometry, the inertia scaled to M")
+      ->allow_extra_args(false)
+      ->option_text("LINK=M");
+  command
+      .add_option_function<double>(
+          "--total-mass", [&](double value) { compute.total_mass = value; },
+          "The whole robot's weighed mass in kg, spread over the links in proportion to their "
+          "masses from densities (links with --mass, and links without geometry that keep a "
+          "stated mass, are subtracted first)")
+      ->check(CLI::PositiveNumber)
+      ->option_text("M");
+}
+
 }  // namespace
 
 CLI::App& add_inertials_command(CLI::App& cli, InertialsOptions& options) {
@@ -74,37 +109,7 @@ CLI::App& add_inertials_command(CLI::App& cli, InertialsOptions& options) {
           "Which geometry gives a link's shape (default collision)")
       ->check(CLI::IsMember({"collision", "visual"}))
       ->option_text("collision|visual");
-  command
-      .add_option_function<std::vector<std::string>>(
-          "--density",
-          [&](const std::vector<std::string>& values) {
-            for (const std::string& value : values) add_density(value, options.compute);
-          },
-          "RHO: kg/m^3 for every link: the masses follow from the volumes (default: keep each "
-          "link's stated mass; 1000 for a link stating none). LINK=RHO (repeatable): that "
-          "link's density, over the file's own (SDF collision, MJCF geom) and over RHO")
-      ->allow_extra_args(false)
-      ->option_text("RHO|LINK=RHO");
-  command
-      .add_option_function<std::vector<std::string>>(
-          "--mass",
-          [&](const std::vector<std::string>& values) {
-            for (const std::string& value : values) {
-              options.compute.link_masses.push_back(link_value("--mass", value));
-            }
-          },
-          "LINK=M (repeatable): that link's weighed mass in kg; its centre of mass and inertia "
-          "follow from the geometry, the inertia scaled to M")
-      ->allow_extra_args(false)
-      ->option_text("LINK=M");
-  command
-      .add_option_function<double>(
-          "--total-mass", [&](double value) { options.compute.total_mass = value; },
-          "The whole robot's weighed mass in kg, spread over the links in proportion to their "
-          "masses from densities (links with --mass, and links without geometry that keep a "
-          "stated mass, are subtracted first)")
-      ->check(CLI::PositiveNumber)
-      ->option_text("M");
+  add_weighed_mass_options(command, options.compute);
   command
       .add_option("--package-path", options.package_paths,
                   "Where package://NAME/ (and SDF model://NAME/) lead; repeatable, "

@@ -9,9 +9,9 @@
 #include <string>
 #include <variant>
 
-#include "app/scene/unit_hint.hpp"
 #include "app/robot/inertial_xml.hpp"
 #include "app/scene/mesh_inspection.hpp"
+#include "app/scene/unit_hint.hpp"
 #include "engine/mass/mesh_analysis.hpp"
 #include "engine/mass/primitive_shapes.hpp"
 #include "json_python.hpp"
