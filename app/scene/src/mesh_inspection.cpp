@@ -56,6 +56,8 @@ std::string method_text(const engine::MeshReport& report) {
                                     : "convex (the convex hull's solid)";
     case engine::InertiaMethod::shell:
       return "shell (the surface, uniform areal density)";
+    case engine::InertiaMethod::legacy:
+      return "legacy (MuJoCo's approximation)";
     default:
       return "exact (the enclosed solid)";
   }

@@ -15,14 +15,18 @@
 //     (mass / V) times that of step 3 at unit density.
 // A box's volume is its own box's, so boxes are exact; any other shape is not (a sphere's box
 // of equal inertia has 11% less volume, an L-prism's 13.9% more). MuJoCo keeps vertices in
-// single precision: the positions are rounded to float as read and again once moved to the
-// centre, as MuJoCo stores them, so the numbers agree with its compiler to about 1e-12 rather
-// than 1e-7. Triangles under 1e-15 in twice their area count for nothing, as in MuJoCo.
+// single precision and some of its sums see only float operands: the positions are rounded to
+// float as read and again once moved to the centre, and the centroids, the edges and the
+// vertex products of step 3 are summed in float, as MuJoCo's arithmetic does, so the numbers
+// agree with its compiler to 1e-9 rather than 1e-7. Triangles under 1e-15 in twice their area
+// count for nothing, as in MuJoCo.
 #include "legacy_inertia.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include <Eigen/Eigenvalues>
 
@@ -35,26 +39,46 @@ namespace {
 /// Below this, twice a triangle's area counts as zero (MuJoCo's mjMINVAL).
 constexpr double kLegacySmallestArea = 1e-15;
 
-struct LegacyTriangle {
-  double area = 0.0;
-  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< unit, or zero for a negligible one
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-};
+using LegacyPoint = std::array<float, 3>;
 
-LegacyTriangle legacy_triangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                               const Eigen::Vector3d& c) {
-  LegacyTriangle t;
-  t.centroid = (a + b + c) / 3.0;
-  const Eigen::Vector3d cross = (b - a).cross(c - a);
-  const double length = cross.norm();
-  if (length < kLegacySmallestArea) return t;
-  t.normal = cross / length;
-  t.area = length / 2.0;
-  return t;
+/// The mesh's positions as MuJoCo keeps them: single precision.
+std::vector<LegacyPoint> single_precision(const std::vector<Eigen::Vector3d>& positions) {
+  std::vector<LegacyPoint> out;
+  out.reserve(positions.size());
+  for (const Eigen::Vector3d& p : positions) {
+    out.push_back(
+        {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())});
+  }
+  return out;
 }
 
-Eigen::Vector3d single_precision(const Eigen::Vector3d& p) {
-  return p.cast<float>().cast<double>();
+double legacy_dot(const std::array<double, 3>& u, const std::array<double, 3>& v) {
+  return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+}
+
+struct LegacyTriangle {
+  double area = 0.0;
+  std::array<double, 3> normal{};  ///< unit, or not normalised for a negligible triangle
+  std::array<double, 3> centroid{};
+};
+
+/// Area, unit normal and centroid in MuJoCo's arithmetic: the centroid and the two edges are
+/// summed in single precision (float operands), the cross product and its length in double.
+LegacyTriangle legacy_triangle(const LegacyPoint& a, const LegacyPoint& b, const LegacyPoint& c) {
+  LegacyTriangle t;
+  std::array<double, 3> u{}, v{};
+  for (std::size_t i = 0; i < 3; ++i) {
+    const float sum = a[i] + b[i] + c[i];
+    t.centroid[i] = sum / 3.0f;
+    u[i] = b[i] - a[i];
+    v[i] = c[i] - a[i];
+  }
+  t.normal = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  const double length = std::sqrt(legacy_dot(t.normal, t.normal));
+  if (length < kLegacySmallestArea) return t;
+  for (double& n : t.normal) n /= length;
+  t.area = length / 2.0;
+  return t;
 }
 
 std::string legacy_number(double value) {
@@ -68,43 +92,56 @@ std::string legacy_number(double value) {
 }
 
 /// Steps 1 and 2: the centre of the absolute tetrahedra spanned from the face centroid.
-Eigen::Vector3d legacy_centre(const TriangleMesh& mesh, const std::string& source) {
+std::array<double, 3> legacy_centre(const std::vector<LegacyPoint>& points,
+                                    const TriangleMesh& mesh, const std::string& source) {
   double area = 0.0;
-  Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
+  std::array<double, 3> face_centre{};
   for (const auto& t : mesh.triangles) {
-    const LegacyTriangle face =
-        legacy_triangle(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
-    weighted += face.area * face.centroid;
+    const LegacyTriangle face = legacy_triangle(points[t[0]], points[t[1]], points[t[2]]);
+    for (std::size_t j = 0; j < 3; ++j) face_centre[j] += face.area * face.centroid[j];
     area += face.area;
   }
   if (!(area >= kLegacySmallestArea)) legacy_fail(source, "has zero surface area");
-  const Eigen::Vector3d face_centre = weighted / area;
+  for (double& x : face_centre) x /= area;
   double volume = 0.0;
-  Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+  std::array<double, 3> moment{};
   for (const auto& t : mesh.triangles) {
-    const LegacyTriangle face =
-        legacy_triangle(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
-    const double v = std::abs(face.normal.dot(face.centroid - face_centre) * face.area / 3.0);
+    const LegacyTriangle face = legacy_triangle(points[t[0]], points[t[1]], points[t[2]]);
+    const std::array<double, 3> apex_to_face = {face.centroid[0] - face_centre[0],
+                                                face.centroid[1] - face_centre[1],
+                                                face.centroid[2] - face_centre[2]};
+    const double v = std::abs(legacy_dot(apex_to_face, face.normal) * face.area / 3);
     volume += v;
-    moment += v * (face.centroid * 0.75 + face_centre * 0.25);
+    for (std::size_t j = 0; j < 3; ++j) {
+      moment[j] += v * (face.centroid[j] * 3.0 / 4.0 + face_centre[j] / 4.0);
+    }
   }
   if (!(volume > 0.0)) legacy_fail(source, "spans no volume (all its faces lie in one plane)");
-  return moment / volume;
+  for (double& x : moment) x /= volume;
+  return moment;
 }
 
-/// Step 3 about the origin: the volume and the second moment of the absolute tetrahedra.
-MomentIntegrals legacy_integrals(const TriangleMesh& centred) {
+/// Step 3 about the origin: the volume and the second moment of the absolute tetrahedra. The
+/// vertex products are summed in single precision, as MuJoCo's float operands make them.
+MomentIntegrals legacy_integrals(const std::vector<LegacyPoint>& centred,
+                                 const TriangleMesh& mesh) {
   MomentIntegrals integrals;
-  for (const auto& t : centred.triangles) {
-    const Eigen::Vector3d& d = centred.positions[t[0]];
-    const Eigen::Vector3d& e = centred.positions[t[1]];
-    const Eigen::Vector3d& f = centred.positions[t[2]];
+  for (const auto& t : mesh.triangles) {
+    const LegacyPoint& d = centred[t[0]];
+    const LegacyPoint& e = centred[t[1]];
+    const LegacyPoint& f = centred[t[2]];
     const LegacyTriangle face = legacy_triangle(d, e, f);
-    const double v = std::abs(face.centroid.dot(face.normal) * face.area / 3.0);
-    const Eigen::Vector3d s = d + e + f;
+    const double v = std::abs(legacy_dot(face.centroid, face.normal) * face.area / 3);
     integrals.measure += v;
-    integrals.second +=
-        v / 20.0 * (d * d.transpose() + e * e.transpose() + f * f.transpose() + s * s.transpose());
+    for (Eigen::Index r = 0; r < 3; ++r) {
+      for (Eigen::Index c = r; c < 3; ++c) {
+        const auto i = static_cast<std::size_t>(r), k = static_cast<std::size_t>(c);
+        const float products = 2 * (d[i] * d[k] + e[i] * e[k] + f[i] * f[k]) + d[i] * e[k] +
+                               d[k] * e[i] + d[i] * f[k] + d[k] * f[i] + e[i] * f[k] + e[k] * f[i];
+        integrals.second(r, c) += v / 20 * products;
+        integrals.second(c, r) = integrals.second(r, c);
+      }
+    }
   }
   integrals.absolute_measure = integrals.measure;
   return integrals;
@@ -131,11 +168,12 @@ double equal_inertia_box_volume(const MomentIntegrals& integrals, const std::str
 
 void legacy_properties(const TriangleMesh& mesh, const MassOptions& options,
                        std::optional<double> enclosed_volume, MeshReport& report) {
-  TriangleMesh stored = mesh;
-  for (Eigen::Vector3d& p : stored.positions) p = single_precision(p);
-  const Eigen::Vector3d centre = legacy_centre(stored, report.source);
-  for (Eigen::Vector3d& p : stored.positions) p = single_precision(p - centre);
-  const MomentIntegrals integrals = legacy_integrals(stored);
+  std::vector<LegacyPoint> points = single_precision(mesh.positions);
+  const std::array<double, 3> centre = legacy_centre(points, mesh, report.source);
+  for (LegacyPoint& p : points) {
+    for (std::size_t j = 0; j < 3; ++j) p[j] = static_cast<float>(p[j] - centre[j]);
+  }
+  const MomentIntegrals integrals = legacy_integrals(points, mesh);
   if (!(integrals.measure > 0.0)) {
     legacy_fail(report.source, "spans no volume (all its faces lie in one plane)");
   }
@@ -145,7 +183,7 @@ void legacy_properties(const TriangleMesh& mesh, const MassOptions& options,
   report.density = options.mass ? *options.mass / report.volume : options.density.value_or(1000.0);
   MassProperties& body = report.mass_properties;
   body.mass = report.density * report.volume;
-  body.center_of_mass = centre;
+  body.center_of_mass = Eigen::Vector3d(centre[0], centre[1], centre[2]);
   body.inertia = inertia_from_second_moment(integrals.second, body.mass / integrals.measure);
   std::string note =
       "legacy is MuJoCo 2.2.2's approximation (the box of equal inertia, from absolute "
