@@ -131,11 +131,16 @@ TEST_F(InertiaMethodCommand, InspectLegacyNamesMuJocosApproximationAndExactsVolu
   const auto text = tumble("inspect --inertia legacy " + path("l.stl"));
   ASSERT_EQ(text.status, 0) << text.err;
   EXPECT_THAT(text.out, AllOf(HasSubstr("inertia           legacy (MuJoCo's approximation)"),
+                              HasSubstr("enclosed volume   3 m^3"),
+                              HasSubstr("volume            3.41565028 m^3"),
+                              HasSubstr("MuJoCo's legacy approximation: closure and winding not "
+                                        "required (0 boundary edges)"),
                               HasSubstr("% more than the solid the mesh encloses (3 m^3")));
   const auto json = tumble("inspect --json --inertia legacy " + path("cube.stl"));
   ASSERT_EQ(json.status, 0) << json.err;
   const auto report = first_report(json.out);
   EXPECT_EQ(report["method"], "legacy");
+  EXPECT_NEAR(report["enclosed_volume"].get<double>(), 0.125, 1e-15);
   EXPECT_NEAR(report["mass"].get<double>(), 1000 * 0.125, 1e-9);  // convex: legacy is exact
 }
 
