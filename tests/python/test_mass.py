@@ -231,5 +231,10 @@ def test_convex_and_auto_name_the_hull_and_equal_the_command_line(cli_json, tmp_
     write_obj(obj, vertices, faces)
     convex = tumble.inspect(obj, inertia="convex")
     assert convex.to_dict() == cli_json("inspect", obj, "--inertia", "convex")
-    with pytest.raises(tumble.InputError, match="expected 'exact', 'convex', 'shell' or 'auto'"):
-        tumble.inspect(obj, inertia="legacy")
+    legacy = tumble.inspect(obj, inertia="legacy")
+    assert legacy.method == "legacy"
+    assert legacy.to_dict() == cli_json("inspect", obj, "--inertia", "legacy")
+    with pytest.raises(
+        tumble.InputError, match="expected 'exact', 'convex', 'shell', 'legacy' or 'auto'"
+    ):
+        tumble.inspect(obj, inertia="nonsense")

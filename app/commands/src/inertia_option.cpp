@@ -14,10 +14,11 @@ void add_inertia_option(CLI::App& command, engine::InertiaMethod& method) {
           },
           "How a mesh becomes inertia: exact (the solid a closed surface encloses; the "
           "default), convex (the convex hull's solid, for open or broken meshes), shell (the "
-          "surface at uniform areal density: with --shell T or --mass M) or auto (exact, else "
-          "convex with a warning naming why)")
-      ->check(CLI::IsMember({"exact", "convex", "shell", "auto"}))
-      ->option_text("exact|convex|shell|auto");
+          "surface at uniform areal density: with --shell T or --mass M), legacy (MuJoCo's "
+          "approximation, its default for meshes) or auto (exact, else convex with a warning "
+          "naming why)")
+      ->check(CLI::IsMember({"exact", "convex", "shell", "legacy", "auto"}))
+      ->option_text("exact|convex|shell|legacy|auto");
 }
 
 }  // namespace tumble::app

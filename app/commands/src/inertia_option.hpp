@@ -7,7 +7,7 @@
 
 namespace tumble::app {
 
-/// Adds `--inertia exact|convex|shell|auto` to `command`, writing the choice into `method`.
+/// Adds `--inertia exact|convex|shell|legacy|auto` to `command`, writing the choice into `method`.
 void add_inertia_option(CLI::App& command, engine::InertiaMethod& method);
 
 }  // namespace tumble::app

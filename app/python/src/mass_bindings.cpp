@@ -33,8 +33,8 @@ engine::MassOptions mass_options(const std::optional<double>& density,
                                  engine::OverlapMode overlap) {
   const std::optional<engine::InertiaMethod> method = engine::parse_inertia_method(inertia);
   if (!method) {
-    throw_input_error("inertia: expected 'exact', 'convex', 'shell' or 'auto', got '" + inertia +
-                      "'");
+    throw_input_error("inertia: expected 'exact', 'convex', 'shell', 'legacy' or 'auto', got '" +
+                      inertia + "'");
   }
   if (*method == engine::InertiaMethod::shell && !shell && !mass) {
     throw_input_error("inertia: 'shell' needs shell=THICKNESS (metres) or mass=M (kg)");

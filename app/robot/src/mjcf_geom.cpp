@@ -85,16 +85,12 @@ engine::Shape primitive_geom(const Attributes& a, const std::string& type, const
   return shape;
 }
 
-/// A <mesh>'s inertia attribute (MuJoCo 3): exact, convex and shell are followed; legacy,
-/// MuJoCo's own approximation, is noted and the method asked for on the command line used.
+/// A <mesh>'s inertia attribute (MuJoCo 3): exact, convex, shell and legacy (MuJoCo's own
+/// approximation, computed as MuJoCo does) are followed.
 void read_mesh_inertia(const Attributes& a, const Model& model, const std::string& where,
                        MeshAsset& out) {
   const std::optional<std::string> value = a.get("inertia");
   if (!value) return;
-  if (*value == "legacy") {
-    out.legacy = true;
-    return;
-  }
   const std::optional<engine::InertiaMethod> method = engine::parse_inertia_method(*value);
   if (!method || *method == engine::InertiaMethod::automatic) {
     model.source.fail(
@@ -211,12 +207,6 @@ GeomRead read_geom(pugi::xml_node node, const std::string& class_name, const Mod
   if (type == "mesh") {
     if (a.get("fromto")) model.source.fail(node, where + ": fromto: a mesh geom takes no fromto");
     geometry.shape = mesh_geom(a, model, where);
-    const auto asset = model.meshes.find(a.get("mesh").value_or(""));
-    if (asset != model.meshes.end() && asset->second.legacy) {
-      out.note = where + ": mesh '" + asset->first +
-                 "' asks for inertia=\"legacy\", MuJoCo's approximation, which tumble does not "
-                 "compute: the inertia method given (--inertia, default exact) is used instead";
-    }
   } else {
     geometry.shape = primitive_geom(a, type, model, where, geometry.pose);
   }

@@ -22,9 +22,8 @@ namespace tumble::app::robot::mjcf {
 struct MeshAsset {
   std::filesystem::path file;
   Eigen::Vector3d scale = Eigen::Vector3d::Ones();
-  /// inertia="exact|convex|shell" (MuJoCo 3); unset when not given or "legacy".
+  /// inertia="exact|convex|shell|legacy" (MuJoCo 3); unset when not given.
   std::optional<engine::InertiaMethod> inertia;
-  bool legacy = false;  ///< inertia="legacy": MuJoCo's approximation, not computed here
 };
 
 /// The model as far as geoms need it.

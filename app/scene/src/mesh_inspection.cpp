@@ -56,6 +56,8 @@ std::string method_text(const engine::MeshReport& report) {
                                     : "convex (the convex hull's solid)";
     case engine::InertiaMethod::shell:
       return "shell (the surface, uniform areal density)";
+    case engine::InertiaMethod::legacy:
+      return "legacy (MuJoCo's approximation)";
     default:
       return "exact (the enclosed solid)";
   }
@@ -117,6 +119,9 @@ nlohmann::json report_to_json(const engine::MeshReport& report) {
   if (report.method == engine::InertiaMethod::convex) {
     out["hull_volume"] = report.hull_volume;
     out["hull_triangles"] = report.hull_triangles;
+  }
+  if (report.method == engine::InertiaMethod::convex ||
+      report.method == engine::InertiaMethod::legacy) {
     out["enclosed_volume"] =
         report.enclosed_volume ? nlohmann::json(*report.enclosed_volume) : nlohmann::json(nullptr);
   }
@@ -148,7 +153,7 @@ std::string format_report(const engine::MeshReport& report) {
     if (report.thickness > 0.0) row("thickness", fixed("%.9g", report.thickness) + " m");
     row("areal density", fixed("%.9g", report.areal_density) + " kg/m^2");
   }
-  if (report.method == engine::InertiaMethod::convex && report.enclosed_volume) {
+  if (report.method != engine::InertiaMethod::exact && !report.shell && report.enclosed_volume) {
     row("enclosed volume", fixed("%.9g", *report.enclosed_volume) + " m^3 (the mesh's own solid)");
   }
   if (!report.shell || report.thickness > 0.0) {
@@ -182,6 +187,10 @@ std::string format_report(const engine::MeshReport& report) {
   if (report.method == engine::InertiaMethod::convex) {
     check(report.boundary_edges == 0,
           "convex hull of the vertices: closure and winding not required (" +
+              with_thousands(report.boundary_edges) + " boundary edges)");
+  } else if (report.method == engine::InertiaMethod::legacy) {
+    check(report.boundary_edges == 0,
+          "MuJoCo's legacy approximation: closure and winding not required (" +
               with_thousands(report.boundary_edges) + " boundary edges)");
   } else if (!report.shell) {
     check(true, "closed surface (0 boundary edges)");

@@ -198,7 +198,8 @@ void parse_body_matter(const Field& field, BodyDescription& body) {
     const std::string name = method->string();
     const auto parsed = engine::parse_inertia_method(name);
     if (!parsed)
-      method->fail("expected \"exact\", \"convex\", \"shell\" or \"auto\", got \"" + name + "\"");
+      method->fail("expected \"exact\", \"convex\", \"shell\", \"legacy\" or \"auto\", got \"" +
+                   name + "\"");
     body.inertia_method = *parsed;
   }
 }

@@ -11,6 +11,8 @@ std::string inertia_method_name(InertiaMethod method) {
       return "convex";
     case InertiaMethod::shell:
       return "shell";
+    case InertiaMethod::legacy:
+      return "legacy";
     case InertiaMethod::automatic:
       return "auto";
   }
@@ -21,6 +23,7 @@ std::optional<InertiaMethod> parse_inertia_method(const std::string& name) {
   if (name == "exact") return InertiaMethod::exact;
   if (name == "convex") return InertiaMethod::convex;
   if (name == "shell") return InertiaMethod::shell;
+  if (name == "legacy") return InertiaMethod::legacy;
   if (name == "auto") return InertiaMethod::automatic;
   return std::nullopt;
 }

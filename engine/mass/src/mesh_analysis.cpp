@@ -18,6 +18,7 @@
 #include "engine/geometry/mesh_topology.hpp"
 #include "engine/overlap/part_overlap.hpp"
 #include "hull_inertia.hpp"
+#include "legacy_inertia.hpp"
 #include "overlap_policy.hpp"
 #include "part_union.hpp"
 
@@ -441,6 +442,10 @@ MeshReport analyze_mesh(TriangleMesh mesh, const MassOptions& options, const std
       break;
     case InertiaMethod::convex:
       detail::convex_properties(mesh, reference, options,
+                                enclosed_volume(mesh, reference, options, pass, report), report);
+      break;
+    case InertiaMethod::legacy:
+      detail::legacy_properties(mesh, options,
                                 enclosed_volume(mesh, reference, options, pass, report), report);
       break;
     case InertiaMethod::automatic:

@@ -127,6 +127,23 @@ TEST_F(InertiaMethodCommand, InspectConvexStatesBothVolumesAndWarns) {
                     HasSubstr("16.6667% more than the volume the mesh encloses")));
 }
 
+TEST_F(InertiaMethodCommand, InspectLegacyNamesMuJocosApproximationAndExactsVolume) {
+  const auto text = tumble("inspect --inertia legacy " + path("l.stl"));
+  ASSERT_EQ(text.status, 0) << text.err;
+  EXPECT_THAT(text.out, AllOf(HasSubstr("inertia           legacy (MuJoCo's approximation)"),
+                              HasSubstr("enclosed volume   3 m^3"),
+                              HasSubstr("volume            3.41565028 m^3"),
+                              HasSubstr("MuJoCo's legacy approximation: closure and winding not "
+                                        "required (0 boundary edges)"),
+                              HasSubstr("% more than the solid the mesh encloses (3 m^3")));
+  const auto json = tumble("inspect --json --inertia legacy " + path("cube.stl"));
+  ASSERT_EQ(json.status, 0) << json.err;
+  const auto report = first_report(json.out);
+  EXPECT_EQ(report["method"], "legacy");
+  EXPECT_NEAR(report["enclosed_volume"].get<double>(), 0.125, 1e-15);
+  EXPECT_NEAR(report["mass"].get<double>(), 1000 * 0.125, 1e-9);  // convex: legacy is exact
+}
+
 TEST_F(InertiaMethodCommand, InspectShellByMassAndByThickness) {
   const auto mass = tumble("inspect --json --inertia shell --mass 3 " + path("cube.stl"));
   ASSERT_EQ(mass.status, 0) << mass.err;
@@ -207,8 +224,12 @@ TEST_F(InertiaMethodCommand, MjcfMeshInertiaAttributesAreFollowed) {
   EXPECT_THAT(links[0]["notes"].dump(), HasSubstr("inertiafromgeom"));
   EXPECT_EQ(links[1]["computed"]["method"], "exact");
   EXPECT_NEAR(links[1]["computed"]["mass"].get<double>(), 2 * 3.0, 1e-12);
-  EXPECT_EQ(links[2]["computed"]["method"], "exact");
-  EXPECT_THAT(links[2]["notes"].dump(), HasSubstr("inertia=\\\"legacy\\\""));
+  // legacy: MuJoCo's approximation (tests/app/robot/mjcf_legacy_mujoco_test.cpp checks it
+  // against MuJoCo), 13.9% more than the L's 3 m^3.
+  EXPECT_EQ(links[2]["computed"]["method"], "legacy");
+  EXPECT_NEAR(links[2]["computed"]["mass"].get<double>(), 2 * 3.41565, 2 * 1e-5);
+  EXPECT_THAT(links[2]["notes"].dump(),
+              AllOf(HasSubstr("inertia method legacy as the file asks"), HasSubstr("13.8")));
   EXPECT_EQ(links[3]["computed"]["method"], "shell");
   // shellinertia: the density is per area, as MuJoCo reads it: 2 kg/m^2 x 6 x 0.25 m^2.
   EXPECT_NEAR(links[3]["computed"]["mass"].get<double>(), 2 * 6 * 0.25, 1e-12);

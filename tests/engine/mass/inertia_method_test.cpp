@@ -69,11 +69,12 @@ Eigen::Matrix3d cube_inertia(double mass, double side) {
 
 TEST(InertiaMethodTest, NamesRoundTrip) {
   for (InertiaMethod method : {InertiaMethod::exact, InertiaMethod::convex, InertiaMethod::shell,
-                               InertiaMethod::automatic}) {
+                               InertiaMethod::legacy, InertiaMethod::automatic}) {
     EXPECT_EQ(parse_inertia_method(inertia_method_name(method)), method);
   }
   EXPECT_EQ(inertia_method_name(InertiaMethod::automatic), "auto");
-  EXPECT_FALSE(parse_inertia_method("legacy").has_value());
+  EXPECT_EQ(inertia_method_name(InertiaMethod::legacy), "legacy");
+  EXPECT_FALSE(parse_inertia_method("automatic").has_value());
 }
 
 TEST(HullInertiaTest, CubeHullIsTheCube) {

@@ -96,8 +96,8 @@ struct SceneDescription {
 /// "mass" and "density", with an inertia "mass"; "scale" (mesh only, positive);
 /// "overlap" (mesh only: "union" (default), "sum" or "refuse", engine::OverlapMode) or its old
 /// alias "allow_overlap" (mesh only, boolean: true is "sum", false "refuse");
-/// "inertia_method" (mesh only: "exact", "convex", "shell" or "auto", as inspect --inertia);
-/// "position", "orientation" ([w, x, y, z], any non-zero quaternion, normalised),
+/// "inertia_method" (mesh only: "exact", "convex", "shell", "legacy" or "auto", as inspect
+/// --inertia); "position", "orientation" ([w, x, y, z], any non-zero quaternion, normalised),
 /// "velocity" (not with "pivot"), "angular_velocity", "angular_velocity_frame" ("world" by
 /// default or "body"), "pivot", "torque", "torque_frame", "spring" ({"anchor", "attach",
 /// "stiffness", "damping" (default 0)}). Unknown keys are errors.

@@ -69,11 +69,11 @@ struct MeshReport {
   std::size_t non_manifold_edges = 0;
   bool watertight = false;
   bool shell = false;
-  /// The method that gave the mass properties: exact, convex or shell (never automatic).
+  /// The method that gave the mass properties: exact, convex, shell or legacy (never automatic).
   InertiaMethod method = InertiaMethod::exact;
   /// Why exact was refused when InertiaMethod::automatic fell back to convex.
   std::optional<std::string> fallback_reason;
-  std::optional<double> enclosed_volume;  ///< m^3 (convex: the mesh's own solid, when closed)
+  std::optional<double> enclosed_volume;  ///< m^3 (convex, legacy: the exact solid, if any)
   double hull_volume = 0.0;               ///< m^3 (convex only)
   std::size_t hull_triangles = 0;         ///< convex only
   double areal_density = 0.0;             ///< kg/m^2 (shell mode)
