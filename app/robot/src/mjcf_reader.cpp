@@ -1,7 +1,11 @@
-// MJCF (MuJoCo) files: one link per body, in the file's order (MuJoCo's body ids from 1).
+// MJCF (MuJoCo) files: one link per body, in the file's order (MuJoCo's body ids from 1),
+// its frame the nested bodies' poses composed from the world down.
 #include <algorithm>
 #include <array>
+#include <optional>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include <pugixml.hpp>
 
@@ -15,7 +19,6 @@ namespace {
 
 using mjcf::Attributes;
 using mjcf::Model;
-using mjcf::parse_numbers;
 
 /// Elements of MuJoCo 3 or of generated structure that make, move or repeat bodies and geoms
 /// in ways tumble does not follow: refused rather than read wrong.
@@ -58,7 +61,7 @@ void read_compiler_element(pugi::xml_node c, const mjcf::Source& source, mjcf::C
   }
   if (const pugi::xml_attribute a = c.attribute("inertiagrouprange")) {
     const std::vector<double> v =
-        parse_numbers(a.value(), 2, 2, source, c, "compiler", "inertiagrouprange");
+        mjcf::parse_numbers(a.value(), 2, 2, source, c, "compiler", "inertiagrouprange");
     out.group_first = static_cast<int>(v[0]);
     out.group_last = static_cast<int>(v[1]);
   }
@@ -101,11 +104,11 @@ StatedInertial read_inertial(pugi::xml_node node, const Model& model, const std:
   const mjcf::Source& source = model.source;
   StatedInertial out;
   if (const auto pos = a.get("pos")) {
-    const std::vector<double> p = parse_numbers(*pos, 3, 3, source, node, where, "pos");
+    const std::vector<double> p = mjcf::parse_numbers(*pos, 3, 3, source, node, where, "pos");
     out.center_of_mass = Eigen::Vector3d(p[0], p[1], p[2]);
   }
   if (const auto mass = a.get("mass")) {
-    out.mass = parse_numbers(*mass, 1, 1, source, node, where, "mass")[0];
+    out.mass = mjcf::parse_numbers(*mass, 1, 1, source, node, where, "mass")[0];
   }
   const auto diagonal = a.get("diaginertia");
   const auto full = a.get("fullinertia");
@@ -119,11 +122,12 @@ StatedInertial read_inertial(pugi::xml_node node, const Model& model, const std:
   }
   if (diagonal) {
     const std::vector<double> d =
-        parse_numbers(*diagonal, 3, 3, source, node, where, "diaginertia");
+        mjcf::parse_numbers(*diagonal, 3, 3, source, node, where, "diaginertia");
     const Eigen::Matrix3d r = rotation.value_or(Eigen::Matrix3d::Identity());
     out.inertia = r * Eigen::Vector3d(d[0], d[1], d[2]).asDiagonal() * r.transpose();
   } else if (full) {
-    const std::vector<double> f = parse_numbers(*full, 6, 6, source, node, where, "fullinertia");
+    const std::vector<double> f =
+        mjcf::parse_numbers(*full, 6, 6, source, node, where, "fullinertia");
     Eigen::Matrix3d inertia;
     inertia << f[0], f[3], f[4], f[3], f[1], f[5], f[4], f[5], f[2];
     out.inertia = inertia;
@@ -139,7 +143,29 @@ struct Walk {
   int next_id = 1;
 };
 
-void read_children(pugi::xml_node parent, const std::string& childclass, Walk& walk);
+/// Where a body's children are: the enclosing body's name (empty: the world) and frame.
+struct Place {
+  std::string parent;
+  Eigen::Isometry3d frame = Eigen::Isometry3d::Identity();
+};
+
+void read_children(pugi::xml_node parent, const std::string& childclass, const Place& place,
+                   Walk& walk);
+
+/// The body's frame in its parent's: pos and an orientation (quat, axisangle, euler, xyaxes or
+/// zaxis; bodies take no default class).
+Eigen::Isometry3d body_pose(pugi::xml_node body, const Model& model, const std::string& where) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  const Attributes a{body, nullptr};
+  if (const std::optional<std::string> pos = a.get("pos")) {
+    const std::vector<double> p = mjcf::parse_numbers(*pos, 3, 3, model.source, body, where, "pos");
+    pose.translation() = Eigen::Vector3d(p[0], p[1], p[2]);
+  }
+  if (auto rotation = mjcf::orientation(a, model.compiler, model.source, where)) {
+    pose.linear() = *rotation;
+  }
+  return pose;
+}
 
 /// The body's geoms of the kind asked for (or all, when it has none of that kind).
 void read_geoms(pugi::xml_node body, const std::string& childclass, Walk& walk, Link& link) {
@@ -170,7 +196,8 @@ void read_geoms(pugi::xml_node body, const std::string& childclass, Walk& walk, 
 }
 
 /// The body as a link, then its child bodies.
-void read_body(pugi::xml_node body, const std::string& inherited_class, Walk& walk) {
+void read_body(pugi::xml_node body, const std::string& inherited_class, const Place& place,
+               Walk& walk) {
   const mjcf::Source& source = walk.model.source;
   const std::string childclass = body.attribute("childclass").as_string(inherited_class.c_str());
   Link link;
@@ -178,6 +205,8 @@ void read_body(pugi::xml_node body, const std::string& inherited_class, Walk& wa
   link.name = name ? name.value() : "body " + std::to_string(walk.next_id);
   ++walk.next_id;
   const std::string where = "body '" + link.name + "'";
+  link.parent = place.parent;
+  link.frame = place.frame * body_pose(body, walk.model, where);
   walk.model.defaults.get(childclass, body, source, where + ": childclass");
   read_geoms(body, childclass, walk, link);
   std::vector<pugi::xml_node> inertials;
@@ -197,12 +226,14 @@ void read_body(pugi::xml_node body, const std::string& inherited_class, Walk& wa
   const ElementBytes bytes = element_bytes(text, static_cast<std::size_t>(body.offset_debug()));
   link.insert_at = bytes.content_begin;
   link.child_indent = child_indent(text, bytes);
+  const Place children{link.name, link.frame};
   walk.robot.links.push_back(std::move(link));
-  read_children(body, childclass, walk);
+  read_children(body, childclass, children, walk);
 }
 
 /// The bodies among `parent`'s children (refusing what tumble would read wrong).
-void read_children(pugi::xml_node parent, const std::string& childclass, Walk& walk) {
+void read_children(pugi::xml_node parent, const std::string& childclass, const Place& place,
+                   Walk& walk) {
   for (const pugi::xml_node child : parent.children()) {
     const std::string_view kind = child.name();
     if (std::find(kRefused.begin(), kRefused.end(), kind) != kRefused.end()) {
@@ -210,7 +241,7 @@ void read_children(pugi::xml_node parent, const std::string& childclass, Walk& w
                                         ">: not read by tumble (it makes or moves bodies and "
                                         "geoms); expand it into plain bodies and geoms");
     }
-    if (kind == "body") read_body(child, childclass, walk);
+    if (kind == "body") read_body(child, childclass, place, walk);
   }
 }
 
@@ -243,7 +274,8 @@ Robot read_mjcf(const std::filesystem::path& file, std::string text, const ReadO
       source, read_compiler(root, source), mjcf::Defaults(root, source), {}, &options.packages};
   mjcf::read_mesh_assets(root, model);
   Walk walk{model, options, robot};
-  for (const pugi::xml_node world : root.children("worldbody")) read_children(world, "main", walk);
+  for (const pugi::xml_node world : root.children("worldbody"))
+    read_children(world, "main", Place{}, walk);
   return robot;
 }
 

@@ -7,6 +7,8 @@
 #include "app/robot/inertial_xml.hpp"
 #include "app/robot/robot_model.hpp"
 #include "base/errors.hpp"
+#include "link_tree.hpp"
+#include "sdf_frames.hpp"
 #include "xml_values.hpp"
 
 namespace tumble::app::robot {
@@ -38,29 +40,12 @@ std::string required(const pugi::xml_node& node, const char* name, const std::st
 Eigen::Isometry3d link_pose(const pugi::xml_node& parent, const std::string& link_name,
                             const std::string& where) {
   const pugi::xml_node pose = parent.child("pose");
-  if (!pose) return Eigen::Isometry3d::Identity();
   const std::string relative_to = pose.attribute("relative_to").value();
   if (!relative_to.empty() && relative_to != link_name) {
     throw InputError(where + ": pose relative_to '" + relative_to +
                      "': only poses relative to the link itself are supported");
   }
-  const std::string format = pose.attribute("rotation_format").value();
-  const bool quaternion = format == "quat_xyzw";
-  if (!format.empty() && !quaternion && format != "euler_rpy") {
-    throw InputError(where + ": pose rotation_format '" + format +
-                     "': expected euler_rpy or quat_xyzw");
-  }
-  const std::vector<double> v =
-      parse_numbers(pose.text().get(), {quaternion ? 7u : 6u}, where + ": pose");
-  const Eigen::Vector3d xyz(v[0], v[1], v[2]);
-  if (quaternion) {
-    const Eigen::Quaterniond q(v[6], v[3], v[4], v[5]);
-    if (q.norm() == 0.0) throw InputError(where + ": pose: the quaternion is zero");
-    return pose_from(xyz, q.normalized().toRotationMatrix());
-  }
-  Eigen::Vector3d rpy(v[3], v[4], v[5]);
-  if (std::string(pose.attribute("degrees").value()) == "true") rpy *= std::numbers::pi / 180.0;
-  return pose_from(xyz, rotation_from_rpy(rpy));
+  return sdf_pose_value(pose, where);
 }
 
 StatedInertial stated_inertial(const pugi::xml_node& inertial, const std::string& link_name,
@@ -170,14 +155,44 @@ Link read_link(const pugi::xml_node& node, const std::string& prefix, const Cont
   return link;
 }
 
-/// The links of `model` and of the models nested in it, their names prefixed by `prefix`.
-void read_model(const pugi::xml_node& model, const std::string& prefix, const Context& context,
-                std::vector<Link>& links) {
+/// What the models of a file give: their links and the joints between them.
+struct SdfModels {
+  std::vector<Link> links;
+  std::vector<JointEdge> joints;
+};
+
+/// The links of `model` and of the models nested in it, their names prefixed by `prefix`,
+/// each link's frame `model_frame` times its pose in the model; the joints between them.
+void read_model(const pugi::xml_node& model, const std::string& prefix,
+                const Eigen::Isometry3d& model_frame, const Context& context, SdfModels& out) {
+  const std::string where =
+      context.file.string() + ": model '" + std::string(model.attribute("name").value()) + "'";
+  const SdfModelFrames frames(model, model_frame, where);
   for (const pugi::xml_node child : model.children()) {
     const std::string name = child.name();
-    if (name == "link") links.push_back(read_link(child, prefix, context));
-    if (name == "model")
-      read_model(child, prefix + child.attribute("name").value() + "::", context, links);
+    if (name == "link") {
+      out.links.push_back(read_link(child, prefix, context));
+      out.links.back().frame = frames.resolve(child.attribute("name").value());
+    }
+    if (name == "model") {
+      const pugi::xml_node pose = child.child("pose");
+      if (!std::string(pose.attribute("relative_to").value()).empty()) {
+        throw InputError(where + ": nested model '" + child.attribute("name").value() +
+                         "': pose relative_to is not supported on a model's pose");
+      }
+      read_model(child, prefix + child.attribute("name").value() + "::",
+                 model_frame * sdf_pose_value(pose, where), context, out);
+    }
+    if (name == "joint") {
+      JointEdge joint;
+      joint.name = prefix + child.attribute("name").value();
+      const std::string parent = child.child("parent").text().get();
+      // A joint to the world fixes a root; it is no edge of the tree.
+      if (parent == "world") continue;
+      joint.parent = prefix + parent;
+      joint.child = prefix + child.child("child").text().get();
+      out.joints.push_back(std::move(joint));
+    }
   }
 }
 
@@ -195,13 +210,21 @@ Robot read_sdf(const std::filesystem::path& file, std::string text, const ReadOp
   const Context context{file, robot.text, options};
   // A model file's links are named as the model scopes them ("link", "nested::link"); a
   // world's by their model too ("model::link"), as several models may share link names.
-  for (const pugi::xml_node model : root.children("model"))
-    read_model(model, "", context, robot.links);
+  // Frames: a model file's links in the model's frame; a world's in the world's frame.
+  SdfModels models;
+  for (const pugi::xml_node model : root.children("model")) {
+    read_model(model, "", Eigen::Isometry3d::Identity(), context, models);
+  }
   for (const pugi::xml_node world : root.children("world")) {
     for (const pugi::xml_node model : world.children("model")) {
-      read_model(model, std::string(model.attribute("name").value()) + "::", context, robot.links);
+      read_model(model, std::string(model.attribute("name").value()) + "::",
+                 sdf_pose_value(model.child("pose"), file.string() + ": model '" +
+                                                         model.attribute("name").value() + "'"),
+                 context, models);
     }
   }
+  robot.links = std::move(models.links);
+  build_link_tree(robot.links, models.joints, file.string(), false);
   if (robot.links.empty()) throw InputError(file.string() + ": has no <model> with a <link>");
   return robot;
 }

@@ -1,9 +1,13 @@
-// URDF: each <link>'s stated <inertial> and its <collision> (or <visual>) geometry.
+// URDF: each <link>'s stated <inertial> and its <collision> (or <visual>) geometry, and its
+// frame in the zero configuration from the <joint> tree.
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "app/robot/inertial_xml.hpp"
 #include "app/robot/robot_model.hpp"
 #include "base/errors.hpp"
+#include "link_tree.hpp"
 #include "xml_values.hpp"
 
 namespace tumble::app::robot {
@@ -139,6 +143,29 @@ Link read_urdf_link(const pugi::xml_node& node, const std::string& text,
   return link;
 }
 
+/// The <joint> elements as tree edges: parent and child links, and the joint's <origin> (the
+/// child's frame in the parent's; every kind of joint at zero adds nothing to it).
+std::vector<JointEdge> read_urdf_joints(const pugi::xml_node& root, const std::string& text,
+                                        const UrdfContext& context) {
+  std::vector<JointEdge> joints;
+  const std::string file = context.file.string();
+  for (const pugi::xml_node node : root.children("joint")) {
+    JointEdge joint;
+    joint.name = required_attribute(
+        node, "name", file + ": line " + std::to_string(line_of(text, node.offset_debug())));
+    const std::string where = file + ": joint '" + joint.name + "'";
+    for (const auto& [element, out] :
+         {std::pair{"parent", &joint.parent}, std::pair{"child", &joint.child}}) {
+      const pugi::xml_node link = node.child(element);
+      if (!link) throw InputError(where + ": has no <" + element + "> element");
+      *out = required_attribute(link, "link", where);
+    }
+    joint.origin = origin_pose(node, where);
+    joints.push_back(std::move(joint));
+  }
+  return joints;
+}
+
 }  // namespace
 
 Robot read_urdf(const std::filesystem::path& file, std::string text, const ReadOptions& options) {
@@ -154,6 +181,7 @@ Robot read_urdf(const std::filesystem::path& file, std::string text, const ReadO
   for (const pugi::xml_node node : root.children("link")) {
     robot.links.push_back(read_urdf_link(node, robot.text, context));
   }
+  build_link_tree(robot.links, read_urdf_joints(root, robot.text, context), file.string(), true);
   return robot;
 }
 
