@@ -6,12 +6,16 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
+#include "app/video/robot_render.hpp"
 #include "media/png_io.hpp"
 #include "render/camera_math.hpp"
 #include "support/command_test.hpp"
+#include "support/input_error.hpp"
 #include "support/run_command.hpp"
 #include "support/two_link_robot.hpp"
 
@@ -103,6 +107,32 @@ TEST_F(RobotPictureTest, BoxesAreTheLinksOwnAndOnlyTheWrongLinkDiffers) {
   EXPECT_THAT(link_inspector_text(picture, 0), HasSubstr("every link is within 0.001"));
 }
 
+TEST_F(RobotPictureTest, LinksArePlacedByTheirZeroConfigurationFrames) {
+  // The joint lifts the arm by 1 m and turns it a quarter about z: its geometry and both boxes
+  // follow, the arm's centre going from (0.5, 0, 0.25) to (0, 0.5, 1.25).
+  std::string text = testing::kTwoLinkUrdf;
+  const std::string joint_origin = R"(<origin xyz="0 0 0"/>)";
+  text.replace(text.find(joint_origin), joint_origin.size(),
+               R"(<origin xyz="0 0 1" rpy="0 0 1.5707963267948966"/>)");
+  const fs::path moved = dir_ / "moved.urdf";
+  std::ofstream(moved) << text;
+  const RobotPicture picture = load_robot_picture(moved, {});
+  ASSERT_EQ(picture.links.size(), 2u);
+  const LinkPicture& arm = picture.links[1];
+  const Eigen::Vector3d center(0.0, 0.5, 1.25);
+  ASSERT_TRUE(arm.stated && arm.computed);
+  EXPECT_NEAR((arm.computed->center - center).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((arm.stated->center - center).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(std::abs(arm.computed->axes.col(0).z()), 1.0, 1e-9);
+  Eigen::AlignedBox3d geometry;
+  for (const Eigen::Vector3d& p : arm.geometry.positions) geometry.extend(p);
+  EXPECT_NEAR((geometry.center() - center).norm(), 0.0, 1e-9);
+  EXPECT_NEAR(geometry.sizes().z(), 0.5, 1e-12);
+  // The base, the root, stays where it was; the verdicts do not move with the frames.
+  EXPECT_NEAR((picture.links[0].computed->center - testing::kTwoLinkBaseCenter).norm(), 0.0, 1e-12);
+  EXPECT_EQ(picture.differing(), 1u);
+}
+
 TEST_F(RobotPictureTest, AClickOnALinkPicksIt) {
   const RobotPicture picture = load_robot_picture(robot_, {});
   const render::Camera camera = robot_camera(picture, 320, 240);
@@ -155,40 +185,38 @@ TEST_F(RobotPictureTest, RendersOneStillPngFramingTheRobot) {
 
 TEST_F(RobotPictureTest, BadInputIsOneLineAndNoPng) {
   const fs::path png = dir_ / "robot.png";
-  const auto render = [&](const fs::path& file, const std::string& extra = "") {
-    return run_command(tumble_executable() + " render '" + file.string() + "' -o '" + png.string() +
-                       "' --size 64x48 " + extra);
-  };
-  // A mesh that is not there: the line names it.
+  // A mesh that is not there, through the command: exit 1, one line naming it, no PNG.
   std::string text = testing::kTwoLinkUrdf;
   const std::string cylinder = R"(<cylinder radius="0.05" length="0.5"/>)";
   text.replace(text.find(cylinder), cylinder.size(), R"(<mesh filename="missing_arm.stl"/>)");
   const fs::path missing = dir_ / "missing.urdf";
   std::ofstream(missing) << text;
-  auto result = render(missing);
+  const auto result = run_command(tumble_executable() + " render '" + missing.string() + "' -o '" +
+                                  png.string() + "' --size 64x48");
   EXPECT_EQ(result.status, 1);
   EXPECT_THAT(result.err, HasSubstr("missing_arm.stl"));
-  EXPECT_FALSE(fs::exists(png));
+  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1);
 
-  // Malformed XML.
+  // Malformed XML, an output that is not a PNG, a video's option: the job refuses them.
+  const auto refusal = [&](const fs::path& robot, const fs::path& output,
+                           std::optional<double> fps = std::nullopt) {
+    RenderOptions options;
+    options.scene = robot;
+    options.output = output;
+    options.fps = fps;
+    std::ostringstream out;
+    return testing::input_error_of([&] { write_robot_render(options, out); });
+  };
   const fs::path broken = dir_ / "broken.urdf";
   std::ofstream(broken) << "<robot name='x'><link name='a'>";
-  result = render(broken);
-  EXPECT_EQ(result.status, 1);
-  EXPECT_THAT(result.err, HasSubstr("broken.urdf"));
-  EXPECT_FALSE(fs::exists(png));
-
-  // Not an image, and a video's option.
-  result = run_command(tumble_executable() + " render '" + robot_.string() + "' -o '" +
-                       (dir_ / "robot.mp4").string() + "'");
-  EXPECT_EQ(result.status, 1);
-  EXPECT_THAT(result.err, HasSubstr("a robot file renders to one .png image"));
-  result = render(robot_, "--fps 10");
-  EXPECT_EQ(result.status, 1);
-  EXPECT_THAT(result.err, HasSubstr("--fps: a robot file renders to one still image"));
-  // Nothing half-written left beside the output either.
+  EXPECT_THAT(refusal(broken, png), HasSubstr("broken.urdf"));
+  EXPECT_THAT(refusal(robot_, dir_ / "robot.mp4"),
+              HasSubstr("a robot file renders to one .png image"));
+  EXPECT_THAT(refusal(robot_, png, 10.0),
+              HasSubstr("--fps: a robot file renders to one still image"));
+  // Nothing written, nothing half-written left beside the output either.
   for (const std::string& entry : testing::directory_entries(dir_)) {
-    EXPECT_THAT(entry, ::testing::Not(HasSubstr("robot.png"))) << entry;
+    EXPECT_THAT(entry, ::testing::Not(HasSubstr("robot."))) << entry;
   }
 }
 
