@@ -59,7 +59,8 @@ CLI::App& add_render_command(CLI::App& cli, RenderOptions& options) {
   render
       .add_option("--package-path", options.package_paths,
                   "A robot: where package://NAME/ (and SDF model://NAME/) lead; repeatable")
-      ->allow_extra_args(false)
+      ->expected(1)  // one NAME=DIR each time (as every render option: tumble farm reads one)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
       ->option_text("NAME=DIR");
   return render;
 }
