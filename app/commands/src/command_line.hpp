@@ -21,13 +21,17 @@ struct CommandSummary {
 };
 
 inline constexpr CommandSummary kRenderSummary{
-    "render", "Render a scene off-screen to a video (.mp4, .webm, .gif) or PNG frames (DIR/)"};
+    "render",
+    "Render a scene off-screen to a video (.mp4, .webm, .gif) or PNG frames (DIR/), or a robot "
+    "file's links and inertials to one PNG"};
 inline constexpr CommandSummary kCompareSummary{
     "compare",
     "Render one scene with several integrators side by side (grid) or on top of each other "
     "(overlay) into one video or PNG frames"};
 inline constexpr CommandSummary kViewSummary{
-    "view", "Interactive viewer: play a scene or a mesh, inspect it, switch integrators, record"};
+    "view",
+    "Interactive viewer: play a scene or a mesh, inspect it, switch integrators, record; see a "
+    "robot file's stated and computed inertials"};
 
 /// The commands `tumble-draw` runs, in the order the help lists them.
 inline constexpr CommandSummary kDrawingCommands[] = {kRenderSummary, kCompareSummary,

@@ -9,6 +9,8 @@
 #include "app/support/exit_status.hpp"
 #include "app/support/interrupt_guard.hpp"
 #include "app/support/progress_bar.hpp"
+#include "app/video/robot_picture.hpp"
+#include "app/video/robot_render.hpp"
 #include "command_line.hpp"
 #include "video_options_cli.hpp"
 
@@ -43,7 +45,23 @@ CLI::App& add_render_command(CLI::App& cli, RenderOptions& options) {
           "multisampling with N samples per pixel (2-16, 4 max on llvmpipe, ~2.3x the time)")
       ->type_name("fxaa|off|N");
   render.add_flag("--no-overlay", options.no_overlay,
-                  "No text or plots: title, integrator, time and drift plots are left out");
+                  "No text or plots: title, integrator, time and drift plots are left out (a "
+                  "robot: no legend)");
+  render.get_option("SCENE")->description(
+      "Scene file (JSON), or a robot file (.urdf, .sdf, MJCF .xml) drawn as one .png");
+  render
+      .add_option_function<std::string>(
+          "--from", [&](const std::string& value) { options.robot_from = value; },
+          "A robot: the geometry its computed inertials come from, as tumble inertials --from "
+          "(default collision); links are drawn from their visual geometry")
+      ->check(CLI::IsMember({"collision", "visual"}))
+      ->option_text("collision|visual");
+  render
+      .add_option("--package-path", options.package_paths,
+                  "A robot: where package://NAME/ (and SDF model://NAME/) lead; repeatable")
+      ->expected(1)  // one NAME=DIR each time (as every render option: tumble farm reads one)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->option_text("NAME=DIR");
   return render;
 }
 
@@ -56,6 +74,9 @@ int run_render(const RenderOptions& options, std::ostream& out, std::ostream& er
     guard.report(err, "render", options.output.string());
     return kExitInterrupted;
   };
+  if (is_robot_file(options.scene)) {
+    return run_guarded("render", err, [&] { return write_robot_render(options, out); });
+  }
   return run_guarded(
       "render", err,
       [&] {

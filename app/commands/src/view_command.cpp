@@ -19,8 +19,18 @@ CLI::App& add_view_command(CLI::App& cli, ViewOptions& options) {
       "discarded); scene and mesh errors show in the window.");
   view.add_option_function<std::string>(
           "FILE", [&](const std::string& value) { options.file = value; },
-          "Scene (.json) or mesh file (default: the T-handle demo)")
+          "Scene (.json), mesh, or robot file (.urdf, .sdf, MJCF .xml: its links and their "
+          "stated and computed inertials; default: the T-handle demo)")
       ->type_name("FILE");
+  view.add_option("--from", options.robot_from,
+                  "A robot: the geometry its computed inertials come from, as tumble inertials "
+                  "--from (default collision); links are drawn from their visual geometry")
+      ->check(CLI::IsMember({"collision", "visual"}))
+      ->option_text("collision|visual");
+  view.add_option("--package-path", options.package_paths,
+                  "A robot: where package://NAME/ (and SDF model://NAME/) lead; repeatable")
+      ->allow_extra_args(false)
+      ->option_text("NAME=DIR");
   view.add_option_function<std::string>(
           "--size", [&](const std::string& value) { options.size = value; },
           "Window size WxH in pixels at the start (default 1280x720; the window is resizable)")

@@ -110,9 +110,12 @@ std::size_t command_start(const std::vector<std::string>& words, std::filesystem
 
 const std::vector<FarmedCommand>& farmed_commands() {
   static const std::vector<FarmedCommand> commands = {
-      {"render",
-       video_options(
-           {{"--integrator", true}, {"--dt", true}, {"--aa", true}, {"--no-overlay", false}})},
+      {"render", video_options({{"--integrator", true},
+                                {"--dt", true},
+                                {"--aa", true},
+                                {"--no-overlay", false},
+                                {"--from", true},
+                                {"--package-path", true}})},
       {"compare", video_options({{"--integrators", true}, {"--layout", true}, {"--dt", true}})},
       {"bench",
        {{"--integrators", true},

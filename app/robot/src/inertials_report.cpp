@@ -272,8 +272,6 @@ nlohmann::json comparison_to_json(const robot::Robot& robot,
   return out;
 }
 
-namespace {
-
 robot::PackagePaths package_paths(const std::vector<std::string>& given) {
   robot::PackagePaths out;
   for (const std::string& entry : given) {
@@ -285,6 +283,8 @@ robot::PackagePaths package_paths(const std::vector<std::string>& given) {
   }
   return out;
 }
+
+namespace {
 
 /// `properties` as -o writes them: a centre-of-mass coordinate or product of inertia within
 /// rounding of zero (1e-12 of the link's size or inertia: what summing a mesh's triangles

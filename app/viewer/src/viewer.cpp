@@ -10,6 +10,7 @@
 #include "base/temporary_path.hpp"
 #include "media/image_sink.hpp"
 #include "media/png_io.hpp"
+#include "render/overlay_layout.hpp"
 
 namespace tumble::app::viewer {
 namespace {
@@ -37,10 +38,15 @@ Viewer::~Viewer() {
 }
 
 bool Viewer::open(const std::filesystem::path& file, const RunChoice& choice) {
+  if (is_robot_file(file)) return open_robot(file);
   if (auto error = session_.open(file, choice)) {
     notify(*error, true);
     return false;
   }
+  // The session's new meshes replaced the robot's (uploaded after the session's mark).
+  robot_drawing_.reset();
+  robot_.reset();
+  selected_link.reset();
   file_ = file;
   selected_body = 0;
   follow_body = 0;
@@ -49,9 +55,59 @@ bool Viewer::open(const std::filesystem::path& file, const RunChoice& choice) {
   return true;
 }
 
+bool Viewer::open_robot(const std::filesystem::path& file) {
+  // Everything that can fail first, so a failure keeps what was open.
+  std::unique_ptr<RobotPicture> picture;
+  try {
+    picture = std::make_unique<RobotPicture>(load_robot_picture(file, robot_options_));
+  } catch (const std::exception& error) {
+    const std::string text = error.what();
+    notify(text.rfind(file.string(), 0) == 0 ? text : file.string() + ": " + text, true);
+    return false;
+  }
+  // The scene's meshes and an earlier robot's go (the robot's came after the session's mark).
+  robot_drawing_.reset();
+  session_.close();
+  robot_ = std::move(picture);
+  robot_drawing_ = std::make_unique<RobotDrawing>(*robot_, renderer_);
+  file_ = file;
+  selected_link.reset();
+  press_.reset();
+  reset_camera();
+  notify("opened " + file.string() + ": " + std::to_string(robot_->links.size()) + " links, " +
+         std::to_string(robot_->differing()) + " differing from their computed inertials");
+  return true;
+}
+
 void Viewer::reset_camera() {
+  if (robot_) {
+    camera_ = OrbitCamera(robot_camera(*robot_, renderer_.width(), renderer_.height()));
+    return;
+  }
   if (session_.empty()) return;
   camera_ = OrbitCamera(session_.scene_camera());
+}
+
+double Viewer::reach() const {
+  if (!robot_) return session_.reach();
+  return robot_->bounds.isEmpty() ? 1.0 : 0.5 * robot_->bounds.diagonal().norm();
+}
+
+void Viewer::pick(const MouseButtonEvent& button, bool imgui_wants_mouse) {
+  if (!robot_ || button.button != 0) return;
+  if (button.down) {
+    if (imgui_wants_mouse) return;
+    press_ = Eigen::Vector2f(button.x, button.y);
+    return;
+  }
+  // A drag orbits; only a release where the press was picks.
+  constexpr float kClickSlopPx = 4.0f;
+  const bool click =
+      press_ && (*press_ - Eigen::Vector2f(button.x, button.y)).norm() <= kClickSlopPx;
+  press_.reset();
+  if (!click) return;
+  selected_link = pick_link(*robot_, camera_.camera(reach()), renderer_.width(), renderer_.height(),
+                            button.x, button.y);
 }
 
 void Viewer::handle(const InputEvent& event, bool imgui_wants_keyboard, bool imgui_wants_mouse) {
@@ -68,6 +124,7 @@ void Viewer::handle(const InputEvent& event, bool imgui_wants_keyboard, bool img
     if (auto shortcut = shortcut_for(*key, help_shown)) apply(*shortcut);
     return;
   }
+  if (const auto* button = std::get_if<MouseButtonEvent>(&event)) pick(*button, imgui_wants_mouse);
   camera_.handle(event, imgui_wants_mouse);
 }
 
@@ -144,6 +201,11 @@ void Viewer::update(double wall_seconds) {
 }
 
 render::DrawList Viewer::frame() {
+  if (robot_drawing_) {
+    const float font_px =
+        render::overlay_font_px(renderer_.width(), renderer_.height(), session_.font_scale());
+    return robot_drawing_->frame(camera_.camera(reach()), selected_link, true, font_px);
+  }
   return session_.frame(camera_.camera(session_.reach()));
 }
 
@@ -226,7 +288,7 @@ void Viewer::dismiss_notice(std::size_t index) {
 
 std::filesystem::path Viewer::fresh_name(const std::string& extension) const {
   // "<scene>-<n><extension>" with the first n not taken (screenshots and videos counted apart).
-  std::string stem = session_.empty() ? "tumble" : file_.stem().string();
+  std::string stem = session_.empty() && !robot_ ? "tumble" : file_.stem().string();
   if (stem.empty()) stem = "tumble";
   for (int n = 1;; ++n) {
     std::filesystem::path candidate = output_dir_ / (stem + "-" + std::to_string(n) + extension);

@@ -60,7 +60,11 @@ void Panels::draw(Viewer& viewer, const FrameStats& stats, int width, int height
   ImGui::SetNextWindowPos(ImVec2(panel.x, panel.y), ImGuiCond_Always);
   ImGui::SetNextWindowSize(ImVec2(panel.width, panel.height), ImGuiCond_Always);
   ImGui::Begin("tumble view", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
-  simulation_section(viewer, stats);
+  if (viewer.robot()) {
+    robot_section(viewer);
+  } else {
+    simulation_section(viewer, stats);
+  }
   if (!viewer.session().empty()) {
     integrator_section(viewer);
     initial_state_section(viewer);
@@ -112,8 +116,8 @@ void Panels::simulation_section(Viewer& viewer, const FrameStats& stats) {
   Session& session = viewer.session();
   if (session.empty()) {
     ImGui::TextWrapped(
-        "Nothing open. Open a scene (.json) or a mesh below, or drop a file on "
-        "the window.");
+        "Nothing open. Open a scene (.json), a mesh or a robot file (.urdf, .sdf, MJCF .xml) "
+        "below, or drop a file on the window.");
     return;
   }
   ImGui::TextWrapped("%s", session.scene().name.c_str());
@@ -198,8 +202,8 @@ void Panels::files_section(Viewer& viewer) {
     ImGui::SetKeyboardFocusHere();
     viewer.open_requested = false;
   }
-  const bool entered = ImGui::InputTextWithHint("##open", "scene.json or mesh file", &open_path_,
-                                                ImGuiInputTextFlags_EnterReturnsTrue);
+  const bool entered = ImGui::InputTextWithHint("##open", "scene.json, mesh or robot file",
+                                                &open_path_, ImGuiInputTextFlags_EnterReturnsTrue);
   ImGui::SameLine();
   if ((ImGui::Button("Open") || entered) && !open_path_.empty()) viewer.open(open_path_);
 

@@ -111,6 +111,13 @@ std::optional<std::string> Session::open(const std::filesystem::path& file,
   }
 }
 
+void Session::close() {
+  runs_.clear();
+  renderer_.release_meshes(mesh_mark_);
+  history_ = {};
+  ++generation_;
+}
+
 std::optional<std::string> Session::open_compiled(const SceneDescription& scene,
                                                   bool spin_about_intermediate) {
   // Everything is built aside first, so a failure leaves the open scene as it was.

@@ -195,6 +195,7 @@ WindowPlan checked_options(const ViewOptions& options) {
   if (options.time_scale) positive_option(*options.time_scale, "--time-scale");
   if (options.font_scale) font_scale_option(*options.font_scale);
   if (options.exit_after) positive_option(*options.exit_after, "--exit-after");
+  package_paths(options.package_paths);  // checks each NAME=DIR
   if (options.integrator) {
     SceneDescription unused;
     override_integrator(unused, *options.integrator);  // checks the name
@@ -276,6 +277,10 @@ ViewerWindow::ViewerWindow(const ViewOptions& options, SdlWindow& window, Window
   viewer_.session().set_font_scale(options.font_scale);
   const std::optional<std::filesystem::path> file =
       options.file ? options.file : default_view_scene();
+  RobotPictureOptions robot_options;
+  if (options.robot_from == "visual") robot_options.from = robot::GeometrySource::visual;
+  robot_options.package_paths = options.package_paths;
+  viewer_.set_robot_options(robot_options);
   if (file) {
     viewer_.open(*file, {options.integrator, options.dt, options.allow_overlap});
   } else {

@@ -12,10 +12,13 @@
 #include <fstream>
 #include <string>
 
+#include "app/video/robot_picture.hpp"
 #include "media/png_io.hpp"
+#include "render/camera_math.hpp"
 #include "support/command_test.hpp"
 #include "support/image_compare.hpp"
 #include "support/run_command.hpp"
+#include "support/two_link_robot.hpp"
 
 namespace tumble::app {
 namespace {
@@ -346,6 +349,31 @@ TEST_F(ViewCommand, RealKeyPressesFromXdotoolReachTheViewer) {
   EXPECT_GT(pixels_differing(shot("playing.png"), paused1, 0, kSceneRegion), 500u);
   // Ctrl+P, with the modifier from the keyboard state.
   EXPECT_EQ(shot("t_handle_flip-1.png").width, kViewCommandWidth);
+}
+
+TEST_F(ViewCommand, OpensARobotFileAndAClickOnALinkShowsItsInertials) {
+  // The arm of the two-link robot, where the viewer's first frame shows it.
+  const fs::path robot = dir_ / "two_link.urdf";
+  std::ofstream(robot) << testing::kTwoLinkUrdf;
+  const RobotPicture picture = load_robot_picture(robot, {});
+  const Eigen::Vector3f arm = render::project_to_pixels(
+      robot_camera(picture, kViewCommandWidth, kViewCommandHeight), kViewCommandWidth,
+      kViewCommandHeight, testing::kTwoLinkArmCenter.cast<float>());
+  ASSERT_LT(arm.x(), kSceneRight);
+  const std::string at = std::to_string(arm.x()) + " " + std::to_string(arm.y());
+  const auto result = view(
+      "0.5 screenshot before.png\n0.6 click " + at + "\n1.0 screenshot selected.png\n1.1 quit\n",
+      "--frame-clock '" + robot.string() + "'");
+  ASSERT_EQ(result.status, 0) << result.err;
+
+  // The selected link turns yellow in the view; the panel's inspector opens on it (more of
+  // the panel is text: the two inertials' table).
+  const auto yellow = [](int r, int g, int b) { return r > 180 && g > 150 && b < 140; };
+  const tumble::Image before = shot("before.png");
+  const tumble::Image selected = shot("selected.png");
+  EXPECT_LT(count_pixels(before, kSceneRegion, yellow), 20u);
+  EXPECT_GT(count_pixels(selected, kSceneRegion, yellow), 300u);
+  EXPECT_GT(pixels_differing(before, selected, 0, kPanelRegion), 500u);
 }
 
 TEST_F(ViewCommand, WithoutADisplayItSaysSoAndFails) {

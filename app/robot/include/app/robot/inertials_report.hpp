@@ -96,6 +96,10 @@ struct InertialsReport {
   std::vector<std::string> errors() const;
 };
 
+/// `--package-path NAME=DIR` values as package paths, in the order given. Throws InputError
+/// "--package-path 'X': expected NAME=DIR" for a malformed one.
+robot::PackagePaths package_paths(const std::vector<std::string>& given);
+
 /// Reads `file` as `read` says and computes and compares every link's inertial as `compute`
 /// says; nothing is printed or written. Throws InputError for a file that cannot be read.
 InertialsReport compute_inertials(const std::filesystem::path& file, const robot::ReadOptions& read,

@@ -57,6 +57,10 @@ struct RenderOptions : VideoOptions {
   std::optional<double> dt;
   std::optional<std::string> antialiasing;  ///< "off", "fxaa" or samples per pixel
   bool no_overlay = false;
+  /// A robot file (robot_render.hpp): the geometry of the computed inertials (--from) and
+  /// where package:// paths lead (--package-path NAME=DIR).
+  std::optional<std::string> robot_from;
+  std::vector<std::string> package_paths;
 };
 
 /// A renderer of width x height pixels anti-aliased as `antialiasing` says, drawing big meshes

@@ -6,6 +6,7 @@
 #include <iosfwd>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace tumble::app {
 
@@ -18,6 +19,9 @@ struct ViewOptions {
   std::optional<std::string> integrator;
   std::optional<double> dt;
   bool allow_overlap = false;  ///< a mesh opened on its own may have overlapping parts
+  /// A robot file: the geometry of its computed inertials ("collision" or "visual").
+  std::string robot_from = "collision";
+  std::vector<std::string> package_paths;  ///< a robot file's `--package-path NAME=DIR`
   std::optional<double> time_scale;
   std::optional<double> font_scale;  ///< panels' and overlay's text; default: the scene's
   bool paused = false;

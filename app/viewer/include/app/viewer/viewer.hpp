@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "app/video/robot_picture.hpp"
 #include "app/viewer/viewer_camera.hpp"
 #include "app/viewer/viewer_input.hpp"
 #include "app/viewer/viewer_session.hpp"
@@ -49,9 +50,14 @@ class Viewer {
   const Session& session() const { return session_; }
   OrbitCamera& camera() { return camera_; }
 
-  /// Opens a scene or a mesh (with the integrator and dt of `choice` where given); on failure
+  /// Opens a scene or a mesh (with the integrator and dt of `choice` where given), or a robot
+  /// file (is_robot_file: URDF, SDF, MJCF), shown still with its links' inertials; on failure
   /// posts the error and keeps what was open. Returns whether it opened.
   bool open(const std::filesystem::path& file, const RunChoice& choice = {});
+  /// How robot files are opened from now on (the command line's --from, --package-path).
+  void set_robot_options(const RobotPictureOptions& options) { robot_options_ = options; }
+  /// The robot file open now, or null (a scene or a mesh, or nothing, is open).
+  const RobotPicture* robot() const { return robot_.get(); }
   /// The file open now (empty before the first open).
   const std::filesystem::path& file() const { return file_; }
 
@@ -100,7 +106,10 @@ class Viewer {
   bool follow = false;  ///< camera target on `follow_body`'s centre of mass
   std::size_t follow_body = 0;
   std::size_t selected_body = 0;  ///< the inspector's and the initial-state editor's body
-  bool open_requested = false;    ///< Ctrl+O: the panel focuses its file field
+  /// The robot's link the inspector shows and the picture highlights: chosen in the list, or
+  /// by clicking it in the view (a press and release within a few pixels).
+  std::optional<std::size_t> selected_link;
+  bool open_requested = false;  ///< Ctrl+O: the panel focuses its file field
   bool quit_requested() const { return quit_; }
   /// Back to the camera a render of the scene starts with.
   void reset_camera();
@@ -111,6 +120,10 @@ class Viewer {
 
  private:
   std::filesystem::path fresh_name(const std::string& extension) const;
+  bool open_robot(const std::filesystem::path& file);
+  /// A left click (press and release in place) on the view picks the robot's link under it.
+  void pick(const MouseButtonEvent& button, bool imgui_wants_mouse);
+  double reach() const;
 
   render::Renderer& renderer_;
   std::filesystem::path output_dir_;
@@ -120,6 +133,11 @@ class Viewer {
   std::vector<Notice> notices_;
   double clock_ = 0.0;
   bool quit_ = false;
+
+  RobotPictureOptions robot_options_;
+  std::unique_ptr<RobotPicture> robot_;
+  std::unique_ptr<RobotDrawing> robot_drawing_;  ///< after the session's meshes, if any
+  std::optional<Eigen::Vector2f> press_;         ///< where the left button went down
 
   std::unique_ptr<media::ImageSink> sink_;
   std::filesystem::path recording_path_;

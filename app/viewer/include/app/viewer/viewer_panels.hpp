@@ -55,6 +55,8 @@ class Panels {
   void inspector_section(Viewer& viewer);
   void plots_section(Viewer& viewer);
   void files_section(Viewer& viewer);
+  /// A robot file: its links, the legend and the selected link's inertials.
+  void robot_section(Viewer& viewer);
   void help_window(Viewer& viewer, const PanelRect& panel, int height);
   void notices_window(Viewer& viewer, const PanelRect& panel, int height);
   /// Refreshes the edit fields from the session when its runs restarted or the body changed.

@@ -82,6 +82,9 @@ class Session {
   std::optional<std::string> open(const std::filesystem::path& file, const RunChoice& choice = {});
 
   bool empty() const { return runs_.empty(); }
+  /// Closes the scene: the runs end and their meshes are released (the viewer then shows
+  /// something else, such as a robot file); empty() is then true.
+  void close();
   /// Changes each time the runs restart (open, reset, integrator or initial state changed), so
   /// panels know when to refresh what they show.
   std::size_t generation() const { return generation_; }
