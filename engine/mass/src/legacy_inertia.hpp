@@ -1,7 +1,7 @@
 #pragma once
-// The legacy method: a mesh's inertia as MuJoCo 2.2.2 computes it by default (and MuJoCo 3 for
-// <mesh inertia="legacy">), an approximation that differs from the exact solid on concave
-// meshes.
+// The legacy method: a mesh's inertia as MuJoCo 2.2.2 computes it by default, an approximation
+// that differs from the exact solid on every mesh but a box. MuJoCo 3's <mesh inertia="legacy">
+// names the same idea but computes it otherwise (docs/inspect.md); this is 2.2.2's.
 
 #include <optional>
 
