@@ -20,12 +20,13 @@ std::string kilograms(double value) {
 /// Throws when an entry of `entries` (the values of `option`) names no link of `robot`.
 void check_names(const Robot& robot, const std::vector<std::pair<std::string, double>>& entries,
                  const char* option) {
-  for (const auto& [name, value] : entries) {
+  for (const auto& entry : entries) {
+    const std::string& name = entry.first;  // a named variable: lambdas cannot capture bindings
     const bool found = std::any_of(robot.links.begin(), robot.links.end(),
                                    [&](const Link& link) { return link.name == name; });
     if (!found) {
-      throw InputError(std::string(option) + " '" + name + "=" + kilograms(value) + "': no link '" +
-                       name + "' in " + robot.file.string());
+      throw InputError(std::string(option) + " '" + name + "=" + kilograms(entry.second) +
+                       "': no link '" + name + "' in " + robot.file.string());
     }
   }
 }
