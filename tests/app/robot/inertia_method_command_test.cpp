@@ -11,6 +11,7 @@
 
 #include "engine/geometry/primitive_meshes.hpp"
 #include "robot_fixtures.hpp"
+#include "support/l_prism.hpp"
 #include "support/run_command.hpp"
 #include "support/stl_writer.hpp"
 
@@ -36,27 +37,6 @@ engine::TriangleMesh open_cube(double side) {
   return mesh;
 }
 
-/// The prism over the L (0,0) (2,0) (2,1) (1,1) (1,2) (0,2) from z = 0 to 1: volume 3, its
-/// hull's 3.5.
-engine::TriangleMesh l_prism_mesh() {
-  const std::vector<Eigen::Vector2d> outline = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
-  engine::TriangleMesh mesh;
-  const auto n = static_cast<std::uint32_t>(outline.size());
-  for (double z : {0.0, 1.0}) {
-    for (const Eigen::Vector2d& p : outline) mesh.positions.emplace_back(p.x(), p.y(), z);
-  }
-  for (std::uint32_t i = 1; i + 1 < n; ++i) {
-    mesh.triangles.push_back({0, i + 1, i});
-    mesh.triangles.push_back({n, n + i, n + i + 1});
-  }
-  for (std::uint32_t i = 0; i < n; ++i) {
-    const std::uint32_t j = (i + 1) % n;
-    mesh.triangles.push_back({i, j, n + j});
-    mesh.triangles.push_back({i, n + j, n + i});
-  }
-  return mesh;
-}
-
 /// inspect --json prints an object for one file, an array for several.
 nlohmann::json first_report(const std::string& out) {
   const nlohmann::json parsed = nlohmann::json::parse(out);
@@ -70,7 +50,7 @@ class InertiaMethodCommand : public ::testing::Test {
     tumble::testing::write_binary_stl(dir_ / "open.stl", open_cube(0.5));
     tumble::testing::write_binary_stl(dir_ / "cube.stl",
                                       engine::box_mesh(Eigen::Vector3d::Constant(0.5)));
-    tumble::testing::write_binary_stl(dir_ / "l.stl", l_prism_mesh());
+    tumble::testing::write_binary_stl(dir_ / "l.stl", tumble::testing::l_prism());
   }
   void TearDown() override { std::filesystem::remove_all(dir_); }
   std::string path(const std::string& name) const { return (dir_ / name).string(); }

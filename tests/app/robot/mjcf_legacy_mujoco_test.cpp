@@ -18,6 +18,7 @@
 #include "app/support/text_file.hpp"
 #include "engine/geometry/primitive_meshes.hpp"
 #include "engine/mass/primitive_shapes.hpp"
+#include "support/l_prism.hpp"
 #include "support/stl_writer.hpp"
 
 namespace tumble::app::robot {
@@ -28,27 +29,6 @@ namespace {
 /// MuJoCo's eigen decomposition (measured 1.8e-9; mjcf_mujoco_test.cpp).
 constexpr double kLegacyTolerance = 1e-12;
 constexpr double kLegacyTensorTolerance = 1e-7;
-
-/// The prism over the L (0,0) (2,0) (2,1) (1,1) (1,2) (0,2), z from 0 to 1, caps fanned from
-/// the first corner (as inertia_method_command_test.cpp): volume 3, hull 3.5.
-engine::TriangleMesh legacy_l_prism() {
-  const std::vector<Eigen::Vector2d> outline = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
-  engine::TriangleMesh mesh;
-  const auto n = static_cast<std::uint32_t>(outline.size());
-  for (double z : {0.0, 1.0}) {
-    for (const Eigen::Vector2d& p : outline) mesh.positions.emplace_back(p.x(), p.y(), z);
-  }
-  for (std::uint32_t i = 1; i + 1 < n; ++i) {
-    mesh.triangles.push_back({0, i + 1, i});
-    mesh.triangles.push_back({n, n + i, n + i + 1});
-  }
-  for (std::uint32_t i = 0; i < n; ++i) {
-    const std::uint32_t j = (i + 1) % n;
-    mesh.triangles.push_back({i, j, n + j});
-    mesh.triangles.push_back({i, n + j, n + i});
-  }
-  return mesh;
-}
 
 /// `mesh` turned and moved off the origin: no coordinate is a round float.
 engine::TriangleMesh legacy_turned(engine::TriangleMesh mesh) {
@@ -95,7 +75,7 @@ class MjcfLegacyAgainstMujoco : public ::testing::Test {
               ("tumble_legacy_" + std::to_string(::getpid()) + "_" +
                ::testing::UnitTest::GetInstance()->current_test_info()->name());
     std::filesystem::create_directories(folder_ / "meshes");
-    tumble::testing::write_binary_stl(folder_ / "meshes" / "l.stl", legacy_l_prism());
+    tumble::testing::write_binary_stl(folder_ / "meshes" / "l.stl", tumble::testing::l_prism());
     tumble::testing::write_binary_stl(
         folder_ / "meshes" / "prism.stl",
         legacy_turned(engine::tessellate(engine::Cylinder{0.07, 0.15}, 20)));

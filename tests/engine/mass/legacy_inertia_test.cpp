@@ -13,6 +13,7 @@
 #include "engine/mass/mesh_analysis.hpp"
 #include "inertia_expectations.hpp"
 #include "support/input_error.hpp"
+#include "support/l_prism.hpp"
 
 namespace tumble::engine {
 namespace {
@@ -27,27 +28,6 @@ MeshReport legacy_report(const TriangleMesh& mesh, double density = 2.0) {
   options.inertia = InertiaMethod::legacy;
   options.density = density;
   return analyze_mesh(mesh, options, "legacy.stl");
-}
-
-/// The prism over the L (0,0) (2,0) (2,1) (1,1) (1,2) (0,2), z from 0 to 1, caps fanned from
-/// the first corner: volume 3.
-TriangleMesh legacy_l_prism() {
-  const std::vector<Eigen::Vector2d> outline = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
-  TriangleMesh mesh;
-  const auto n = static_cast<std::uint32_t>(outline.size());
-  for (double z : {0.0, 1.0}) {
-    for (const Eigen::Vector2d& p : outline) mesh.positions.emplace_back(p.x(), p.y(), z);
-  }
-  for (std::uint32_t i = 1; i + 1 < n; ++i) {
-    mesh.triangles.push_back({0, i + 1, i});
-    mesh.triangles.push_back({n, n + i, n + i + 1});
-  }
-  for (std::uint32_t i = 0; i < n; ++i) {
-    const std::uint32_t j = (i + 1) % n;
-    mesh.triangles.push_back({i, j, n + j});
-    mesh.triangles.push_back({i, n + j, n + i});
-  }
-  return mesh;
 }
 
 TEST(LegacyInertia, ConvexBoxIsTheExactSolid) {
@@ -98,7 +78,7 @@ TEST(LegacyInertia, ConvexBallIsItsBoxOfEqualInertia) {
 }
 
 TEST(LegacyInertia, LPrismCountsTheFoldTwiceAndSaysHowFarExactIs) {
-  const MeshReport legacy = legacy_report(legacy_l_prism(), 1.0);
+  const MeshReport legacy = legacy_report(tumble::testing::l_prism(), 1.0);
   // MuJoCo 2.2.2 compiles this mesh to a body_mass of 3.41565 at density 1.
   EXPECT_NEAR(legacy.mass_properties.mass, 3.41565, 1e-5);
   EXPECT_NEAR(legacy.volume, legacy.mass_properties.mass, kExact);
