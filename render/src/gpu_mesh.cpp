@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace tumble::render::detail {
@@ -53,6 +54,29 @@ std::size_t GpuMesh::triangles(std::size_t level) const {
   return levels[std::min(level, levels.size() - 1)].count / 3;
 }
 
+void GpuMesh::refine_for(float pixels_per_unit) {
+  if (!chain) return;
+  const std::size_t built = chain->indices().size();
+  if (chain->grow_for(pixels_per_unit)) {
+    const std::vector<std::uint32_t>& indices = chain->indices();
+    glBindVertexArray(vao.get());
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, index_buffer.get());
+    if (indices.size() <= index_capacity) {
+      glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLintptr>(built * sizeof(std::uint32_t)),
+                      static_cast<GLsizeiptr>((indices.size() - built) * sizeof(std::uint32_t)),
+                      indices.data() + built);
+    } else {
+      index_capacity = indices.size();
+      glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+                   static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)), indices.data(),
+                   GL_STATIC_DRAW);
+    }
+    glBindVertexArray(0);
+    levels = chain->levels();
+  }
+  if (chain->complete()) chain.reset();
+}
+
 GpuMesh upload_mesh(const MeshData& mesh, bool with_lod) {
   validate(mesh);
   GpuMesh gpu;
@@ -97,21 +121,25 @@ GpuMesh upload_mesh(const MeshData& mesh, bool with_lod) {
   glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float),
                         reinterpret_cast<const void*>(3 * sizeof(float)));
   if (!mesh.normals.empty()) {
-    std::vector<std::uint32_t> chained;
-    const std::vector<std::uint32_t>* indices = &mesh.indices;
-    if (with_lod) {
+    gpu.levels = {{0, mesh.indices.size(), 0.0f}};
+    gpu.index_capacity = mesh.indices.size();
+    if (with_lod && mesh.indices.size() / 3 > kLodMinTriangles) {
       std::vector<Eigen::Vector3f> unit_normals(mesh.normals.size());
       for (std::size_t i = 0; i < mesh.normals.size(); ++i) {
         unit_normals[i] = mesh.normals[i].normalized();
       }
-      gpu.levels = build_lod_chain(mesh.positions, unit_normals, mesh.indices, chained);
-      indices = &chained;
+      gpu.chain = std::make_unique<LodChain>(mesh.positions, std::move(unit_normals), mesh.indices);
+      // The copies add at most a quarter, then halves of it: room for them all at once.
+      gpu.index_capacity += mesh.indices.size() / 2 + 3;
     }
     gpu.index_buffer = GlBuffer::create();
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gpu.index_buffer.get());
     glBufferData(GL_ELEMENT_ARRAY_BUFFER,
-                 static_cast<GLsizeiptr>(indices->size() * sizeof(std::uint32_t)), indices->data(),
+                 static_cast<GLsizeiptr>(gpu.index_capacity * sizeof(std::uint32_t)), nullptr,
                  GL_STATIC_DRAW);
+    glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0,
+                    static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
+                    mesh.indices.data());
     gpu.count = static_cast<GLsizei>(mesh.indices.size());
   } else {
     gpu.count = static_cast<GLsizei>(vertices.size() / 6);

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 #include "gl_handle.hpp"
@@ -18,11 +19,18 @@ struct GpuMesh {
   GlBuffer index_buffer;  // none when the mesh was un-indexed for flat shading
   GLsizei count = 0;      // indices (or vertices) of the full mesh
   /// Level 0 is the full mesh; simplified copies follow (indexed meshes over
-  /// kLodMinTriangles triangles only), their indices after the full mesh's in index_buffer.
+  /// kLodMinTriangles triangles only), their indices after the full mesh's in index_buffer,
+  /// made as frames need them (refine_for).
   std::vector<LodLevel> levels;
+  /// The chain still being made; empty once it is complete or without level of detail.
+  std::unique_ptr<LodChain> chain;
+  std::size_t index_capacity = 0;                    ///< indices index_buffer holds room for
   Eigen::Vector3f centre = Eigen::Vector3f::Zero();  // bounding sphere in the body frame
   float radius = 0.0f;
 
+  /// Makes (and uploads) the levels a frame drawn at `pixels_per_unit` pixels per mesh unit
+  /// may pick (LodChain::grow_for); its context must be current.
+  void refine_for(float pixels_per_unit);
   /// Draws level `level` (clamped to the coarsest there is).
   void draw(std::size_t level = 0) const;
   /// Triangles of level `level` (clamped likewise).
@@ -30,8 +38,8 @@ struct GpuMesh {
 };
 
 /// Validates and uploads a mesh (throws std::invalid_argument naming what is wrong). Without
-/// normals the triangles are un-indexed so each gets its own flat normal. `with_lod` builds
-/// the simplified copies of a large indexed mesh.
+/// normals the triangles are un-indexed so each gets its own flat normal. `with_lod` prepares
+/// the simplified copies of a large indexed mesh (made when a frame first needs them).
 GpuMesh upload_mesh(const MeshData& mesh, bool with_lod = false);
 
 }  // namespace tumble::render::detail

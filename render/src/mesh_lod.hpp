@@ -23,10 +23,40 @@ struct LodLevel {
 
 /// The full mesh (level 0, error 0) followed by simplified copies, the first with a quarter
 /// of its triangles (at least 10,000), the others each about half the one before, all
-/// referencing the same vertices. `indices` receives the
-/// concatenation. A mesh of at most kLodMinTriangles triangles gets level 0 only.
+/// referencing the same vertices, built one level at a time and only as far as frames need
+/// them. A mesh of at most kLodMinTriangles triangles (or without normals) has level 0 only.
 /// `normals` are the vertices' unit normals (the bound measures how far each simplified
 /// triangle's interior leaves the tangent planes at its corners).
+class LodChain {
+ public:
+  LodChain(std::vector<Eigen::Vector3f> positions, std::vector<Eigen::Vector3f> normals,
+           const std::vector<std::uint32_t>& full);
+
+  const std::vector<LodLevel>& levels() const { return levels_; }
+  /// The concatenation of the levels' indices built so far.
+  const std::vector<std::uint32_t>& indices() const { return indices_; }
+  /// No further level will be made.
+  bool complete() const { return complete_; }
+  /// Makes the next level; false (and complete() from then on) when there is none.
+  bool grow();
+  /// Grows until the coarsest level built is not under `max_error_px` at `pixels_per_unit`
+  /// (or the chain is complete), so that pick_lod_level over the levels built chooses what it
+  /// would over the whole chain. Returns whether a level was added.
+  bool grow_for(float pixels_per_unit, float max_error_px = 1.0f);
+
+ private:
+  std::vector<Eigen::Vector3f> positions_;
+  std::vector<Eigen::Vector3f> normals_;
+  std::vector<LodLevel> levels_;
+  std::vector<std::uint32_t> indices_;
+  std::vector<std::uint32_t> previous_;  ///< the coarsest level's indices
+  float scale_ = 1.0f;                   ///< meshoptimizer's relative errors to mesh units
+  float quadric_error_ = 0.0f;           ///< meshoptimizer's errors summed along the chain
+  bool complete_ = false;
+};
+
+/// The whole chain at once (every level LodChain would make); `indices` receives the
+/// concatenation.
 std::vector<LodLevel> build_lod_chain(const std::vector<Eigen::Vector3f>& positions,
                                       const std::vector<Eigen::Vector3f>& normals,
                                       const std::vector<std::uint32_t>& full,

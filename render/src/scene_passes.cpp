@@ -87,7 +87,7 @@ ScenePasses::ScenePasses(bool lod, bool reuse_static_layers, bool smooth_lines)
   glBindVertexArray(0);
 }
 
-void ScenePasses::draw(const DrawList& frame, const std::vector<GpuMesh>& meshes,
+void ScenePasses::draw(const DrawList& frame, std::vector<GpuMesh>& meshes,
                        OffscreenContext& context) {
   const int width = context.width();
   const int height = context.height();
@@ -135,7 +135,7 @@ void ScenePasses::draw(const DrawList& frame, const std::vector<GpuMesh>& meshes
   glBindVertexArray(0);
 }
 
-void ScenePasses::collect_solids(const DrawList& frame, const std::vector<GpuMesh>& meshes,
+void ScenePasses::collect_solids(const DrawList& frame, std::vector<GpuMesh>& meshes,
                                  const Eigen::Matrix4f& view, int height) {
   solids_.clear();
   triangles_ = 0;
@@ -166,12 +166,13 @@ void ScenePasses::collect_solids(const DrawList& frame, const std::vector<GpuMes
     box.extend(centre);
     // Level of detail: pixels per world unit at the mesh's nearest point (perspective:
     // height / (2 tan(fov / 2) depth)), the coarsest level under a pixel there.
-    if (lod_ && solid.mesh->levels.size() > 1) {
+    if (lod_ && (solid.mesh->levels.size() > 1 || solid.mesh->chain)) {
       const float nearest =
           std::max(solid.view_depth - solid.mesh->radius * scale, frame.camera.near_plane);
       const float half_fov = 0.5f * frame.camera.vertical_fov_deg * 3.14159265f / 180.0f;
       const float pixels_per_unit =
           static_cast<float>(height) / (2.0f * std::tan(half_fov) * nearest) * scale;
+      solid.mesh->refine_for(pixels_per_unit);
       solid.level = pick_lod_level(solid.mesh->levels, pixels_per_unit);
     }
   }
@@ -218,6 +219,7 @@ void ScenePasses::draw_shadow_map(const DrawList& frame) {
   const float texels_per_unit = static_cast<float>(kShadowMapSize) / (2.0f * radius);
   for (const Solid& solid : solids_) {
     const Eigen::Matrix4f matrix = light_view_projection_ * solid.model;
+    if (lod_) solid.mesh->refine_for(texels_per_unit * solid.scale);
     glUniformMatrix4fv(mvp, 1, GL_FALSE, matrix.data());
     const std::size_t level =
         lod_ ? std::max(solid.level,

@@ -27,7 +27,7 @@ class ScenePasses {
 
   /// Draws everything but the overlays into the context's framebuffer. Throws
   /// std::invalid_argument for a MeshId this renderer never returned.
-  void draw(const DrawList& frame, const std::vector<GpuMesh>& meshes, OffscreenContext& context);
+  void draw(const DrawList& frame, std::vector<GpuMesh>& meshes, OffscreenContext& context);
 
   /// Triangles drawn into the image by the last draw() (shadow pass not counted).
   std::size_t last_frame_triangles() const { return triangles_; }
@@ -35,7 +35,7 @@ class ScenePasses {
  private:
   /// One shaded solid (a mesh instance or half an arrow) of the current frame.
   struct Solid {
-    const GpuMesh* mesh;
+    GpuMesh* mesh;
     Eigen::Matrix4f model;
     Rgba colour;
     float view_depth;       // distance along the view direction, to sort translucent solids
@@ -54,7 +54,7 @@ class ScenePasses {
     float patch_half_size;
   };
 
-  void collect_solids(const DrawList& frame, const std::vector<GpuMesh>& meshes,
+  void collect_solids(const DrawList& frame, std::vector<GpuMesh>& meshes,
                       const Eigen::Matrix4f& view, int height);
   void draw_shadow_map(const DrawList& frame);
   void draw_background(const SceneStyle& style);

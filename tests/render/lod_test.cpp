@@ -63,6 +63,97 @@ TEST(LodChain, EachLevelShrinksAndStaysWithinItsErrorOfTheSurface) {
             1u);
 }
 
+TEST(LodChain, GrowsOnlyAsFarAsAFrameNeedsAndPicksAsTheWholeChainWould) {
+  const MeshData mesh = torus(300, 150);
+  std::vector<std::uint32_t> indices;
+  const std::vector<detail::LodLevel> whole =
+      detail::build_lod_chain(mesh.positions, mesh.normals, mesh.indices, indices);
+  ASSERT_GE(whole.size(), 4u);
+  for (const float pixels_per_unit : {1.0f, 30.0f, 100.0f, 300.0f, 1000.0f, 1e5f}) {
+    SCOPED_TRACE(pixels_per_unit);
+    detail::LodChain chain(mesh.positions, mesh.normals, mesh.indices);
+    EXPECT_EQ(chain.levels().size(), 1u);  // nothing is made before a frame asks
+    chain.grow_for(pixels_per_unit);
+    const std::vector<detail::LodLevel>& built = chain.levels();
+    const std::size_t picked = detail::pick_lod_level(whole, pixels_per_unit);
+    EXPECT_EQ(detail::pick_lod_level(built, pixels_per_unit), picked);
+    // One level past the one picked (to know it is too coarse), unless the chain ran out.
+    EXPECT_EQ(built.size(), std::min(picked + 2, whole.size()));
+    for (std::size_t k = 0; k < built.size(); ++k) {
+      EXPECT_EQ(built[k].count, whole[k].count);
+      EXPECT_EQ(built[k].error, whole[k].error);
+    }
+    // Asking again for the same size makes nothing more.
+    EXPECT_FALSE(chain.grow_for(pixels_per_unit));
+  }
+  detail::LodChain chain(mesh.positions, mesh.normals, mesh.indices);
+  EXPECT_FALSE(chain.grow_for(std::nanf("")));
+  EXPECT_FALSE(chain.grow_for(0.0f));
+  EXPECT_EQ(chain.levels().size(), 1u);
+}
+
+/// A cube of side 1 whose faces are n x n grids, each face with its own corner copies (flat
+/// normals, split at the edges as shaded_mesh_data splits creases).
+MeshData gridded_cube(int n) {
+  MeshData mesh;
+  for (int axis = 0; axis < 3; ++axis) {
+    for (const float side : {-0.5f, 0.5f}) {
+      Eigen::Vector3f normal = Eigen::Vector3f::Zero();
+      normal[axis] = side > 0 ? 1.0f : -1.0f;
+      const int u = (axis + 1) % 3;
+      const int v = (axis + 2) % 3;
+      const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+      for (int i = 0; i <= n; ++i) {
+        for (int j = 0; j <= n; ++j) {
+          Eigen::Vector3f p;
+          p[axis] = side;
+          p[u] = -0.5f + static_cast<float>(i) / static_cast<float>(n);
+          p[v] = -0.5f + static_cast<float>(j) / static_cast<float>(n);
+          mesh.positions.push_back(p);
+          mesh.normals.push_back(normal);
+        }
+      }
+      for (int i = 0; i < n; ++i) {
+        for (int j = 0; j < n; ++j) {
+          const auto at = [&](int a, int b) {
+            return base + static_cast<std::uint32_t>(a * (n + 1) + b);
+          };
+          std::uint32_t q[4] = {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)};
+          if (side < 0) std::swap(q[1], q[3]);
+          mesh.indices.insert(mesh.indices.end(), {q[0], q[1], q[2], q[0], q[2], q[3]});
+        }
+      }
+    }
+  }
+  return mesh;
+}
+
+TEST(LodChain, CornersOnACreaseKeepTheNormalOfTheirOwnFace) {
+  // The first level clusters vertices by position, where the copies of an edge vertex (one
+  // per face) coincide; each corner must come back with its own face's copy, or the faces
+  // along the cube's edges would be shaded as if bent by 90 degrees.
+  const MeshData mesh = gridded_cube(70);  // 58,800 triangles
+  detail::LodChain chain(mesh.positions, mesh.normals, mesh.indices);
+  ASSERT_TRUE(chain.grow());
+  const detail::LodLevel& first = chain.levels()[1];
+  EXPECT_LE(first.count, mesh.indices.size() * 3 / 10);
+  const std::vector<std::uint32_t>& indices = chain.indices();
+  std::size_t folded = 0;  // corners whose normal is off their triangle's own by over 45 deg
+  for (std::size_t t = first.first; t < first.first + first.count; t += 3) {
+    const Eigen::Vector3f& a = mesh.positions[indices[t]];
+    const Eigen::Vector3f face =
+        (mesh.positions[indices[t + 1]] - a).cross(mesh.positions[indices[t + 2]] - a);
+    if (face.norm() < 1e-9f) continue;
+    for (std::size_t c = t; c < t + 3; ++c) {
+      folded += mesh.normals[indices[c]].dot(face.normalized()) <
+                std::cos(0.25f * std::numbers::pi_v<float>);
+    }
+  }
+  EXPECT_EQ(folded, 0u);
+  // The cube keeps its size: its error bound is far under its side.
+  EXPECT_LT(first.error, 0.05f);
+}
+
 TEST(LodChain, PicksTheCoarsestLevelUnderAPixel) {
   const std::vector<detail::LodLevel> levels{
       {0, 300, 0.0f}, {300, 150, 0.001f}, {450, 75, 0.004f}, {525, 36, 0.02f}};
@@ -143,6 +234,11 @@ TEST_P(LodImages, AgreeWithTheFullMeshWithinAPixelOfOutline) {
   // The level drawn is much coarser: this frame cannot pass by drawing the full mesh.
   EXPECT_LE(reduced_triangles, full_triangles / 4);
   const Comparison c = compare(reduced, full, empty);
+  RecordProperty("mask_xor", static_cast<int>(c.mask_xor));
+  RecordProperty("outline", static_cast<int>(c.outline));
+  RecordProperty("differing", static_cast<int>(c.differing));
+  RecordProperty("body", static_cast<int>(c.body));
+  RecordProperty("lod_triangles", static_cast<int>(reduced_triangles));
   ASSERT_GT(c.body, 1000u);
   // Outline error under a pixel: the masks differ by at most the outline's length (measured:
   // about a twentieth of it), and shading differences are rare.

@@ -16,9 +16,10 @@
 //   in sync), ground plane, opaque meshes and arrows, polylines and points, translucent meshes
 //   sorted back to front, then ImGui text and panels.
 // - Level of detail (RendererOptions::lod): large meshes get a chain of simplified index
-//   buffers over the same vertices, each with a bound on its distance to the full surface; a
-//   frame draws the coarsest level whose bound, at the mesh's nearest depth, is under a pixel,
-//   so the outline moves by less than a pixel. Callers' data (mass properties) never change.
+//   buffers over the same vertices, each with a bound on its distance to the full surface,
+//   made as frames first need them; a frame draws the coarsest level whose bound, at the
+//   mesh's nearest depth, is under a pixel, so the outline moves by less than a pixel.
+//   Callers' data (mass properties) never change.
 // - Static layers (RendererOptions::reuse_static_layers): the background and the ground outside
 //   the shadow's patch depend only on the camera, the size and the style; they are drawn once,
 //   stored (colour and depth) and copied back at the start of each frame that shares them.
@@ -57,8 +58,9 @@ struct RendererOptions {
   /// mostly in the resolve, so it suits final renders rather than previews.
   int samples = 1;
   /// Level of detail: a mesh of more than 20,000 triangles also gets simplified copies
-  /// (meshoptimizer) at upload, and each frame draws the coarsest whose surface lies under a
-  /// pixel from the full mesh's at the size it is drawn. false: always the full mesh.
+  /// (meshoptimizer), made when a frame first needs them, and each frame draws the coarsest
+  /// whose surface lies under a pixel from the full mesh's at the size it is drawn. false:
+  /// always the full mesh.
   bool lod = true;
   /// Post-process anti-aliasing of the 3D scene (not the overlay). Ignored when multisampling
   /// is in use (samples > 1 after clamping). Off by default here, so golden images stay
