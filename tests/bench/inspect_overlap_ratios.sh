@@ -7,13 +7,7 @@
 # Prints each time and the two ratios (targets: checks/read <= 1.5, checks/skipped <= 1.3).
 # Usage: tests/bench/inspect_overlap_ratios.sh [BUILD_DIR] [ROUNDS]   (default: build 3)
 set -euo pipefail
-build=${1:-build}
-rounds=${2:-3}
-tumble="$build/app/tumble"
-bench="$build/tests/bench_mass_properties"
-for tool in "$tumble" "$bench"; do
-  [ -x "$tool" ] || { echo "inspect_overlap_ratios.sh: $tool not found (build first)" >&2; exit 1; }
-done
+. "$(dirname "$0")/whole_process.sh"
 file="${TMPDIR:-/tmp}/tumble_bench_torus_1m.stl"
 
 # assimp's read, in milliseconds: the least of the repetitions' real times.
@@ -24,20 +18,10 @@ read_ms=$("$bench" --benchmark_filter='^BM_AssimpReadStl/' --benchmark_repetitio
            END { print best }')
 [ -f "$file" ] || { echo "inspect_overlap_ratios.sh: $file was not written" >&2; exit 1; }
 
-# One process's wall time in milliseconds.
-run_ms() {
-  local start end
-  start=$(date +%s%N)
-  "$@" >/dev/null
-  end=$(date +%s%N)
-  echo $(((end - start) / 1000000))
-}
 checks="" skipped=""
 for _ in $(seq "$rounds"); do
-  t=$(run_ms "$tumble" inspect "$file")
-  [ -z "$checks" ] || [ "$t" -lt "$checks" ] && checks=$t
-  t=$(run_ms "$tumble" inspect --skip-overlap-checks "$file")
-  [ -z "$skipped" ] || [ "$t" -lt "$skipped" ] && skipped=$t
+  checks=$(best "$checks" "$(run_ms "$tumble" inspect "$file")")
+  skipped=$(best "$skipped" "$(run_ms "$tumble" inspect --skip-overlap-checks "$file")")
 done
 awk -v r="$read_ms" -v c="$checks" -v s="$skipped" 'BEGIN {
   printf "assimp bare read (best of 3 in one process)  %7.0f ms\n", r

@@ -7,13 +7,7 @@
 # and the whole process's frames a second (target >= 30).
 # Usage: tests/bench/render_million.sh [BUILD_DIR] [ROUNDS]   (default: build 3)
 set -euo pipefail
-build=${1:-build}
-rounds=${2:-3}
-tumble="$build/app/tumble"
-bench="$build/tests/bench_mass_properties"
-for tool in "$tumble" "$bench"; do
-  [ -x "$tool" ] || { echo "render_million.sh: $tool not found (build first)" >&2; exit 1; }
-done
+. "$(dirname "$0")/whole_process.sh"
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 mesh="${TMPDIR:-/tmp}/tumble_bench_torus_1m.stl"
@@ -34,19 +28,10 @@ cat >"$dir/million.json" <<JSON
 }
 JSON
 
-run_ms() {
-  local start end
-  start=$(date +%s%N)
-  "$@" >/dev/null
-  end=$(date +%s%N)
-  echo $(((end - start) / 1000000))
-}
 whole="" start_up=""
 for _ in $(seq "$rounds"); do
-  t=$(run_ms "$tumble" render "$dir/million.json" -o "$dir/out.mp4" -q --frames 0:120)
-  [ -z "$whole" ] || [ "$t" -lt "$whole" ] && whole=$t
-  t=$(run_ms "$tumble" render "$dir/million.json" -o "$dir/one.mp4" -q --frames 0:1)
-  [ -z "$start_up" ] || [ "$t" -lt "$start_up" ] && start_up=$t
+  whole=$(best "$whole" "$(run_ms "$tumble" render "$dir/million.json" -o "$dir/out.mp4" -q --frames 0:120)")
+  start_up=$(best "$start_up" "$(run_ms "$tumble" render "$dir/million.json" -o "$dir/one.mp4" -q --frames 0:1)")
 done
 awk -v w="$whole" -v s="$start_up" 'BEGIN {
   printf "120 frames, whole process (best)   %6.0f ms\n", w
