@@ -28,4 +28,12 @@ struct BlockRun {
 /// the few blocks near edges. Runs come row by row, left to right; `runs` is cleared first.
 void find_edge_blocks(const std::uint8_t* rgba, int width, int height, std::vector<BlockRun>& runs);
 
+/// A rectangle of pixels, GL's bottom-up coordinates: [x0, x1) x [y0, y1).
+struct PixelBox {
+  int x0 = 0;
+  int y0 = 0;
+  int x1 = 0;
+  int y1 = 0;
+};
+
 }  // namespace tumble::render::detail

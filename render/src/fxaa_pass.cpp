@@ -20,12 +20,23 @@ FxaaPass::FxaaPass(int width, int height)
   glBindVertexArray(0);
 }
 
-void FxaaPass::apply(OffscreenContext& context) {
-  // The scene as drawn (bottom-up rows: the blocks are found in GL's own coordinates).
-  scene_.resize(4 * static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_));
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, scene_.data());
-  find_edge_blocks(scene_.data(), width_, height_, runs_);
+void FxaaPass::apply(OffscreenContext& context, const std::optional<PixelBox>& drawn) {
+  // The scene as drawn (bottom-up rows: the blocks are found in GL's own coordinates), within
+  // the box where anything was drawn; its corner is on the blocks' grid.
+  const PixelBox box = drawn.value_or(PixelBox{0, 0, width_, height_});
+  const int box_width = std::max(0, std::min(box.x1, width_) - box.x0);
+  const int box_height = std::max(0, std::min(box.y1, height_) - box.y0);
+  runs_.clear();
+  if (box_width > 0 && box_height > 0) {
+    scene_.resize(4 * static_cast<std::size_t>(box_width) * static_cast<std::size_t>(box_height));
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(box.x0, box.y0, box_width, box_height, GL_RGBA, GL_UNSIGNED_BYTE, scene_.data());
+    find_edge_blocks(scene_.data(), box_width, box_height, runs_);
+    for (BlockRun& run : runs_) {
+      run.row += box.y0 / kEdgeBlock;
+      run.first += box.x0 / kEdgeBlock;
+    }
+  }
   corners_.clear();
   edge_blocks_ = 0;
   for (const BlockRun& run : runs_) {

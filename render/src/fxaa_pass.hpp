@@ -10,6 +10,7 @@
 // at all: llvmpipe runs a discarding fragment shader in full, per 4x4 block it touches).
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "fxaa_blocks.hpp"
@@ -29,8 +30,9 @@ class FxaaPass {
 
   /// Reads the context's scene (its framebuffer must be bound, as the scene passes leave it)
   /// and writes the filtered image into its output framebuffer, which stays the target of later
-  /// draws (the overlay) and of the read-back.
-  void apply(OffscreenContext& context);
+  /// draws (the overlay) and of the read-back. With `drawn`, only that box is read back and
+  /// scanned (outside it the scene is the flat background, which the filter leaves alone).
+  void apply(OffscreenContext& context, const std::optional<PixelBox>& drawn = std::nullopt);
 
   /// Edge blocks the last frame filtered.
   int last_edge_blocks() const { return edge_blocks_; }

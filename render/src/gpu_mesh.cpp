@@ -107,6 +107,8 @@ GpuMesh upload_mesh(const MeshData& mesh, bool with_lod) {
   Eigen::AlignedBox3f box;
   for (const auto& p : mesh.positions) box.extend(p);
   gpu.centre = box.center();
+  gpu.low = box.min();
+  gpu.high = box.max();
   for (const auto& p : mesh.positions) gpu.radius = std::max(gpu.radius, (p - gpu.centre).norm());
 
   gpu.vao = GlVertexArray::create();

@@ -27,6 +27,8 @@ struct GpuMesh {
   std::size_t index_capacity = 0;                    ///< indices index_buffer holds room for
   Eigen::Vector3f centre = Eigen::Vector3f::Zero();  // bounding sphere in the body frame
   float radius = 0.0f;
+  Eigen::Vector3f low = Eigen::Vector3f::Zero();  // bounding box in the body frame
+  Eigen::Vector3f high = Eigen::Vector3f::Zero();
 
   /// Makes (and uploads) the levels a frame drawn at `pixels_per_unit` pixels per mesh unit
   /// may pick (LodChain::grow_for); its context must be current.

@@ -17,10 +17,12 @@ struct Renderer::Impl {
       : context(
             options.width, options.height, options.samples,
             /*post_process=*/options.filter != AntialiasingFilter::none && options.samples <= 1),
-        lod(options.lod) {}
+        lod(options.lod),
+        filter_drawn_region(options.filter_drawn_region) {}
 
   OffscreenContext context;
   bool lod = true;
+  bool filter_drawn_region = true;
   std::vector<detail::GpuMesh> meshes;
   std::unique_ptr<detail::ScenePasses> scene;
   std::unique_ptr<detail::FxaaPass> fxaa;        // when the context has a post-process
@@ -78,7 +80,11 @@ void Renderer::render(const DrawList& frame, Image& out, const ExtraPass& extra)
   context.set_target(OffscreenContext::Target::scene);
   context.make_current();
   impl_->scene->draw(frame, impl_->meshes, context);
-  if (impl_->fxaa) impl_->fxaa->apply(context);  // later draws and the read-back: the output
+  // Later draws and the read-back: the output.
+  if (impl_->fxaa) {
+    impl_->fxaa->apply(context, impl_->filter_drawn_region ? impl_->scene->drawn_box()
+                                                           : std::optional<detail::PixelBox>{});
+  }
   if (frame.has_overlays()) {
     if (!impl_->overlay) impl_->overlay = std::make_unique<detail::OverlayPass>();
     impl_->overlay->draw(frame, context.width(), context.height());

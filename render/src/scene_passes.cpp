@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -133,6 +134,69 @@ void ScenePasses::draw(const DrawList& frame, std::vector<GpuMesh>& meshes,
   draw_lines_and_points(frame, width, height);
   draw_solids(true);
   glBindVertexArray(0);
+  drawn_box_ = bound_drawn(frame, width, height);
+}
+
+std::optional<PixelBox> ScenePasses::bound_drawn(const DrawList& frame, int width,
+                                                 int height) const {
+  if (frame.style.ground) return std::nullopt;
+  float low_x = std::numeric_limits<float>::infinity(), low_y = low_x;
+  float high_x = -low_x, high_y = -low_x;
+  // Grows the box by the pixel of clip-space point `clip`, `margin` pixels around it; false
+  // when the point is not in front of the camera (then its projection is not bounded).
+  const auto add = [&](const Eigen::Vector4f& clip, float margin) {
+    if (!(clip.w() > 1e-6f)) return false;
+    const float x = (0.5f * clip.x() / clip.w() + 0.5f) * static_cast<float>(width);
+    const float y = (0.5f * clip.y() / clip.w() + 0.5f) * static_cast<float>(height);
+    if (!std::isfinite(x) || !std::isfinite(y)) return false;
+    low_x = std::min(low_x, x - margin);
+    high_x = std::max(high_x, x + margin);
+    low_y = std::min(low_y, y - margin);
+    high_y = std::max(high_y, y + margin);
+    return true;
+  };
+  // A solid lies in its mesh's box, placed by its model matrix; with the box's corners in
+  // front of the camera, its projection lies within theirs (the projection of a convex set in
+  // front of the camera is the hull of its corners' projections).
+  for (const Solid& solid : solids_) {
+    const Eigen::Matrix4f to_clip = view_projection_ * solid.model;
+    for (int corner = 0; corner < 8; ++corner) {
+      const Eigen::Vector3f p((corner & 1) ? solid.mesh->high.x() : solid.mesh->low.x(),
+                              (corner & 2) ? solid.mesh->high.y() : solid.mesh->low.y(),
+                              (corner & 4) ? solid.mesh->high.z() : solid.mesh->low.z());
+      if (!add(to_clip * p.homogeneous(), 1.0f)) return std::nullopt;
+    }
+  }
+  // Lines and points: their vertices, out by half their width and the smoothed edge (a
+  // segment between two points in front of the camera projects between their projections).
+  for (const Polyline& line : frame.polylines) {
+    for (const Eigen::Vector3f& p : line.points) {
+      if (!add(view_projection_ * p.homogeneous(), 0.5f * line.width_px + 2.0f)) {
+        return std::nullopt;
+      }
+    }
+  }
+  for (const Points& points : frame.points) {
+    for (const Eigen::Vector3f& p : points.positions) {
+      if (!add(view_projection_ * p.homogeneous(), 0.5f * points.size_px + 2.0f)) {
+        return std::nullopt;
+      }
+    }
+  }
+  if (!(low_x <= high_x)) return PixelBox{};  // nothing but the background
+  // 8 pixels of background all round (the block scan looks one pixel past each block), then
+  // out to whole 8-pixel blocks, so that the scan's blocks are the whole frame's.
+  constexpr int kAlign = 8;
+  const auto outward = [](float v, int limit, bool up) {
+    const float grown = up ? std::ceil(v) + kAlign : std::floor(v) - kAlign;
+    const int clamped = static_cast<int>(std::clamp(grown, 0.0f, static_cast<float>(limit)));
+    return up ? std::min(limit, (clamped + kAlign - 1) / kAlign * kAlign)
+              : clamped / kAlign * kAlign;
+  };
+  const PixelBox box{outward(low_x, width, false), outward(low_y, height, false),
+                     outward(high_x, width, true), outward(high_y, height, true)};
+  if (box.x0 >= box.x1 || box.y0 >= box.y1) return PixelBox{};
+  return box;
 }
 
 void ScenePasses::collect_solids(const DrawList& frame, std::vector<GpuMesh>& meshes,

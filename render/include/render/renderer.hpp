@@ -71,6 +71,11 @@ struct RendererOptions {
   /// unshadowed ground instead of drawing them again. The image is the same pixel for pixel;
   /// false draws every layer every frame (for comparisons).
   bool reuse_static_layers = true;
+  /// The anti-aliasing filter reads back and scans only the box where anything but the
+  /// background was drawn (the background gradient has no edge to filter), unless a ground is
+  /// shown or something reaches behind the camera. The image is the same pixel for pixel;
+  /// false scans the whole frame (for comparisons).
+  bool filter_drawn_region = true;
 };
 
 /// Drawing a caller adds on top of a frame (the viewer's interactive ImGui panels).
