@@ -249,6 +249,33 @@ TEST_P(LodImages, AgreeWithTheFullMeshWithinAPixelOfOutline) {
 INSTANTIATE_TEST_SUITE_P(Sizes, LodImages,
                          ::testing::Values(std::pair{1280, 720}, std::pair{480, 270}));
 
+TEST(LodImages, ASmallChainOutgrowingItsFirstRoomStillDrawsRight) {
+  // 25,000 triangles: the first copy keeps 10,000 (more than a quarter), so the chain outgrows
+  // the room the index buffer was given at upload and is uploaded again whole.
+  const MeshData mesh = torus(125, 100);
+  Image empty, full, reduced;
+  std::size_t reduced_triangles = 0;
+  for (const bool lod : {false, true}) {
+    Renderer renderer(RendererOptions{320, 180, 1, lod});
+    const MeshId id = renderer.upload(mesh);
+    // Near first (the first copy only), then far (the whole chain).
+    Image near;
+    renderer.render(torus_frame(id, 3.2f), near);
+    const DrawList frame = torus_frame(id, 12.0f);
+    renderer.render(frame, lod ? reduced : full);
+    if (lod) reduced_triangles = renderer.last_frame_triangles();
+    if (!lod) {
+      DrawList nothing;
+      nothing.camera = frame.camera;
+      renderer.render(nothing, empty);
+    }
+  }
+  EXPECT_LE(reduced_triangles, mesh.indices.size() / 3 / 4);
+  const Comparison c = compare(reduced, full, empty);
+  ASSERT_GT(c.body, 100u);
+  EXPECT_LE(c.mask_xor, c.outline);
+}
+
 TEST(LodImages, CloserBodiesDrawFinerLevels) {
   const MeshData mesh = torus(500, 250);
   Renderer renderer(RendererOptions{640, 360, 1, true});
