@@ -27,13 +27,7 @@ DrawList crossing_frame(MeshId box, int i) {
   if (i == 14) return frame;
   const float x = -4.0f + 0.6f * static_cast<float>(i);
   const float angle = 0.35f * static_cast<float>(i);
-  const Eigen::Affine3f pose =
-      Eigen::Translation3f(x, 0.5f * x, 0.2f) *
-      Eigen::AngleAxisf(angle, Eigen::Vector3f(0.3f, 0.5f, 0.8f).normalized());
-  frame.meshes.push_back({box, pose.matrix(), {0.8f, 0.3f, 0.2f, 1.0f}});
-  const Eigen::Affine3f glass = Eigen::Translation3f(-1.2f, 0.8f, 0.0f) * Eigen::Scaling(0.6f);
-  frame.meshes.push_back({box, glass.matrix(), {0.2f, 0.5f, 0.9f, 0.5f}});
-  frame.arrows.push_back({{0.0f, 0.0f, 0.2f}, {0.0f, 0.0f, 1.2f}, {0.2f, 0.8f, 0.3f, 1.0f}});
+  testing::add_run_solids(frame, box, {x, 0.5f * x, 0.2f}, angle);
   Polyline trail;
   trail.width_px = 3.0f;
   for (int k = 0; k <= i; ++k) {
@@ -42,7 +36,7 @@ DrawList crossing_frame(MeshId box, int i) {
   }
   frame.polylines.push_back(trail);
   frame.points.push_back({{Eigen::Vector3f(-1.0f, -1.5f, 1.6f)}, {1.0f, 1.0f, 0.0f, 1.0f}, 6.0f});
-  if (i == 13) frame.camera.eye = (pose * Eigen::Vector3f(0.05f, 0.0f, 0.0f));
+  if (i == 13) frame.camera.eye = {x + 0.05f, 0.5f * x, 0.2f};  // inside the box
   return frame;
 }
 

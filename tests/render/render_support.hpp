@@ -22,6 +22,19 @@ namespace tumble::render::testing {
 
 using tumble::testing::mean_difference;
 
+/// The solids of the frame-by-frame comparison runs: `box` tumbled by `angle` at `centre`
+/// (opaque), a translucent copy of it and a green arrow.
+inline void add_run_solids(DrawList& frame, MeshId box, const Eigen::Vector3f& centre,
+                           float angle) {
+  const Eigen::Affine3f pose =
+      Eigen::Translation3f(centre) *
+      Eigen::AngleAxisf(angle, Eigen::Vector3f(0.3f, 0.5f, 0.8f).normalized());
+  frame.meshes.push_back({box, pose.matrix(), {0.8f, 0.3f, 0.2f, 1.0f}});
+  const Eigen::Affine3f glass = Eigen::Translation3f(-1.2f, 0.8f, 0.0f) * Eigen::Scaling(0.6f);
+  frame.meshes.push_back({box, glass.matrix(), {0.2f, 0.5f, 0.9f, 0.5f}});
+  frame.arrows.push_back({{0.0f, 0.0f, 0.2f}, {0.0f, 0.0f, 1.2f}, {0.2f, 0.8f, 0.3f, 1.0f}});
+}
+
 /// Box with the given half extents, 8 vertices, 12 outward triangles (flat shaded).
 inline MeshData box_mesh(const Eigen::Vector3f& half) {
   MeshData mesh;

@@ -32,13 +32,7 @@ DrawList layered_frame(MeshId box, int i, bool ground) {
   frame.style.ground = ground;
   frame.style.ground_height = -1.0f;
   const float angle = 0.35f * static_cast<float>(i);
-  const Eigen::Affine3f pose =
-      Eigen::Translation3f(0.3f * std::sin(angle), 0.0f, 0.2f) *
-      Eigen::AngleAxisf(angle, Eigen::Vector3f(0.3f, 0.5f, 0.8f).normalized());
-  frame.meshes.push_back({box, pose.matrix(), {0.8f, 0.3f, 0.2f, 1.0f}});
-  const Eigen::Affine3f glass = Eigen::Translation3f(-1.2f, 0.8f, 0.0f) * Eigen::Scaling(0.6f);
-  frame.meshes.push_back({box, glass.matrix(), {0.2f, 0.5f, 0.9f, 0.5f}});
-  frame.arrows.push_back({{0.0f, 0.0f, 0.2f}, {0.0f, 0.0f, 1.2f}, {0.2f, 0.8f, 0.3f, 1.0f}});
+  testing::add_run_solids(frame, box, {0.3f * std::sin(angle), 0.0f, 0.2f}, angle);
   Polyline trail;
   for (int k = 0; k <= i; ++k) {
     trail.points.emplace_back(0.1f * static_cast<float>(k), -0.5f, 0.1f * static_cast<float>(k));
