@@ -100,8 +100,11 @@ std::size_t CoarseCells::dense_index(const CellCoordinates& c) const {
       (std::int64_t{c[0]} - origin_[0]));
 }
 
-/// Where face t is listed (spans beyond 0xffff clamped to it).
-CoarseCells::Listing CoarseCells::listing(std::uint32_t t) const {
+/// Where face t is listed (spans beyond 0xffff clamped to it). Inline: called out of line, its
+/// 10-byte result went through the stack in pieces and was read back whole, a stalled load per
+/// face (the face listing took 25 ms of the 1M-triangle torus on one thread or two; inlined,
+/// the checks on two threads went from 41.6 to 31.1 ms in BM_OverlapCheckTorusTwoThreads).
+inline CoarseCells::Listing CoarseCells::listing(std::uint32_t t) const {
   const auto& f = mesh_.triangles[t];
   const std::uint32_t first = vertex_index_[f[0]];
   if (first == vertex_index_[f[1]] && first == vertex_index_[f[2]]) return {first, {0, 0, 0}};
