@@ -104,12 +104,9 @@ GpuMesh upload_mesh(const MeshData& mesh, bool with_lod) {
   }
 
   // Bounding sphere: centre of the axis-aligned box, radius to the farthest vertex.
-  Eigen::AlignedBox3f box;
-  for (const auto& p : mesh.positions) box.extend(p);
-  gpu.centre = box.center();
-  gpu.low = box.min();
-  gpu.high = box.max();
-  for (const auto& p : mesh.positions) gpu.radius = std::max(gpu.radius, (p - gpu.centre).norm());
+  for (const auto& p : mesh.positions) gpu.box.extend(p);
+  const Eigen::Vector3f centre = gpu.centre();
+  for (const auto& p : mesh.positions) gpu.radius = std::max(gpu.radius, (p - centre).norm());
 
   gpu.vao = GlVertexArray::create();
   glBindVertexArray(gpu.vao.get());

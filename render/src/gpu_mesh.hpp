@@ -3,6 +3,7 @@
 // owns its GL objects (move-only); destroy it with its context current.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cstddef>
 #include <memory>
 #include <vector>
@@ -24,11 +25,11 @@ struct GpuMesh {
   std::vector<LodLevel> levels;
   /// The chain still being made; empty once it is complete or without level of detail.
   std::unique_ptr<LodChain> chain;
-  std::size_t index_capacity = 0;                    ///< indices index_buffer holds room for
-  Eigen::Vector3f centre = Eigen::Vector3f::Zero();  // bounding sphere in the body frame
-  float radius = 0.0f;
-  Eigen::Vector3f low = Eigen::Vector3f::Zero();  // bounding box in the body frame
-  Eigen::Vector3f high = Eigen::Vector3f::Zero();
+  std::size_t index_capacity = 0;  ///< indices index_buffer holds room for
+  Eigen::AlignedBox3f box;         // bounding box in the body frame
+  float radius = 0.0f;             // bounding sphere about the box's centre
+
+  Eigen::Vector3f centre() const { return box.center(); }
 
   /// Makes (and uploads) the levels a frame drawn at `pixels_per_unit` pixels per mesh unit
   /// may pick (LodChain::grow_for); its context must be current.

@@ -30,6 +30,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <utility>
 
 namespace tumble::render::detail {
@@ -82,7 +83,7 @@ namespace {
 /// lies closest to its triangle's.
 std::size_t cluster_first_level(const std::vector<Eigen::Vector3f>& positions,
                                 const std::vector<Eigen::Vector3f>& normals,
-                                const std::vector<std::uint32_t>& full, std::size_t target,
+                                std::span<const std::uint32_t> full, std::size_t target,
                                 std::vector<std::uint32_t>& out, float& error) {
   const std::size_t n = positions.size();
   std::vector<std::uint32_t> unique(n);
@@ -135,7 +136,6 @@ LodChain::LodChain(std::vector<Eigen::Vector3f> positions, std::vector<Eigen::Ve
     normals_ = {};
     return;
   }
-  previous_.assign(full.begin(), full.end());
   scale_ =
       meshopt_simplifyScale(positions_.front().data(), positions_.size(), sizeof(Eigen::Vector3f));
 }
@@ -144,24 +144,27 @@ bool LodChain::grow() {
   if (complete_) return false;
   // The first copy goes from the full mesh straight down to a quarter (one pass over the big
   // mesh; by clustering on the biggest), the others halve the one before by edge collapses.
+  // The source is the coarsest level so far: the full mesh, at the front of indices_, at first.
   const bool first = levels_.size() == 1;
-  const std::size_t target = first ? std::max(levels_.front().count / 3 / 4, kFirstTriangles) * 3
-                                   : (previous_.size() / 3 / 2) * 3;
+  const std::span<const std::uint32_t> source =
+      first ? std::span<const std::uint32_t>(indices_.data(), levels_.front().count)
+            : std::span<const std::uint32_t>(previous_);
+  const std::size_t target =
+      first ? std::max(source.size() / 3 / 4, kFirstTriangles) * 3 : (source.size() / 3 / 2) * 3;
   std::vector<std::uint32_t> next;
   std::size_t made = 0;
   float step_error = 0.0f;
-  if (target / 3 >= kCoarsestTriangles && target < previous_.size()) {
-    if (first && levels_.front().count / 3 >= kClusterTriangles) {
-      made = cluster_first_level(positions_, normals_, previous_, target, next, step_error);
+  if (target / 3 >= kCoarsestTriangles && target < source.size()) {
+    if (first && source.size() / 3 >= kClusterTriangles) {
+      made = cluster_first_level(positions_, normals_, source, target, next, step_error);
     } else {
-      next.resize(previous_.size());
-      made = meshopt_simplify(next.data(), previous_.data(), previous_.size(),
-                              positions_.front().data(), positions_.size(), sizeof(Eigen::Vector3f),
-                              target, std::numeric_limits<float>::max(), 0, &step_error);
+      next.resize(source.size());
+      made = meshopt_simplify(next.data(), source.data(), source.size(), positions_.front().data(),
+                              positions_.size(), sizeof(Eigen::Vector3f), target,
+                              std::numeric_limits<float>::max(), 0, &step_error);
     }
   }
-  if (made == 0 ||
-      static_cast<double>(made) > kLeastShrink * static_cast<double>(previous_.size())) {
+  if (made == 0 || static_cast<double>(made) > kLeastShrink * static_cast<double>(source.size())) {
     complete_ = true;  // nothing more to make: let the copies go
     positions_ = {};
     normals_ = {};

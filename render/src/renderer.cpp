@@ -82,8 +82,10 @@ void Renderer::render(const DrawList& frame, Image& out, const ExtraPass& extra)
   impl_->scene->draw(frame, impl_->meshes, context);
   // Later draws and the read-back: the output.
   if (impl_->fxaa) {
-    impl_->fxaa->apply(context, impl_->filter_drawn_region ? impl_->scene->drawn_box()
-                                                           : std::optional<detail::PixelBox>{});
+    impl_->fxaa->apply(context,
+                       impl_->filter_drawn_region
+                           ? impl_->scene->drawn_box(frame, context.width(), context.height())
+                           : std::nullopt);
   }
   if (frame.has_overlays()) {
     if (!impl_->overlay) impl_->overlay = std::make_unique<detail::OverlayPass>();

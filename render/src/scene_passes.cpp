@@ -134,11 +134,9 @@ void ScenePasses::draw(const DrawList& frame, std::vector<GpuMesh>& meshes,
   draw_lines_and_points(frame, width, height);
   draw_solids(true);
   glBindVertexArray(0);
-  drawn_box_ = bound_drawn(frame, width, height);
 }
 
-std::optional<PixelBox> ScenePasses::bound_drawn(const DrawList& frame, int width,
-                                                 int height) const {
+std::optional<PixelBox> ScenePasses::drawn_box(const DrawList& frame, int width, int height) const {
   if (frame.style.ground) return std::nullopt;
   float low_x = std::numeric_limits<float>::infinity(), low_y = low_x;
   float high_x = -low_x, high_y = -low_x;
@@ -161,9 +159,8 @@ std::optional<PixelBox> ScenePasses::bound_drawn(const DrawList& frame, int widt
   for (const Solid& solid : solids_) {
     const Eigen::Matrix4f to_clip = view_projection_ * solid.model;
     for (int corner = 0; corner < 8; ++corner) {
-      const Eigen::Vector3f p((corner & 1) ? solid.mesh->high.x() : solid.mesh->low.x(),
-                              (corner & 2) ? solid.mesh->high.y() : solid.mesh->low.y(),
-                              (corner & 4) ? solid.mesh->high.z() : solid.mesh->low.z());
+      const Eigen::Vector3f p =
+          solid.mesh->box.corner(static_cast<Eigen::AlignedBox3f::CornerType>(corner));
       if (!add(to_clip * p.homogeneous(), 1.0f)) return std::nullopt;
     }
   }
@@ -222,7 +219,7 @@ void ScenePasses::collect_solids(const DrawList& frame, std::vector<GpuMesh>& me
   Eigen::AlignedBox3f box;
   std::vector<std::pair<Eigen::Vector3f, float>> spheres;
   for (Solid& solid : solids_) {
-    const Eigen::Vector3f centre = (solid.model * solid.mesh->centre.homogeneous()).head<3>();
+    const Eigen::Vector3f centre = (solid.model * solid.mesh->centre().homogeneous()).head<3>();
     const float scale = solid.model.block<3, 3>(0, 0).colwise().norm().maxCoeff();
     solid.view_depth = -(view * centre.homogeneous()).z();
     solid.scale = scale;

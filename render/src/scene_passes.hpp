@@ -31,12 +31,13 @@ class ScenePasses {
   /// std::invalid_argument for a MeshId this renderer never returned.
   void draw(const DrawList& frame, std::vector<GpuMesh>& meshes, OffscreenContext& context);
 
-  /// Where the last draw() put anything but the background: a box holding every solid's
-  /// projected bounding box and every line and point with its width, grown by 8 pixels and out
-  /// to whole 8-pixel blocks; outside it the frame is the background gradient alone, which the
-  /// anti-aliasing filter leaves as it is. Empty when that cannot be bounded (a ground, or
-  /// something reaching behind the camera): then the whole frame counts.
-  const std::optional<PixelBox>& drawn_box() const { return drawn_box_; }
+  /// Where the last draw(), of `frame` at `width` x `height`, put anything but the background:
+  /// a box holding every solid's projected bounding box and every line and point with its
+  /// width, grown by 8 pixels and out to whole 8-pixel blocks; outside it the frame is the
+  /// background gradient alone, which the anti-aliasing filter leaves as it is. Empty when that
+  /// cannot be bounded (a ground, or something reaching behind the camera): then the whole
+  /// frame counts.
+  std::optional<PixelBox> drawn_box(const DrawList& frame, int width, int height) const;
 
   /// Triangles drawn into the image by the last draw() (shadow pass not counted).
   std::size_t last_frame_triangles() const { return triangles_; }
@@ -51,9 +52,6 @@ class ScenePasses {
     std::size_t level = 0;  // level of detail drawn (GpuMesh::levels)
     float scale = 1.0f;     // largest axis scale of `model`
   };
-
-  /// The box drawn_box() reports for `frame` (after collect_solids()).
-  std::optional<PixelBox> bound_drawn(const DrawList& frame, int width, int height) const;
 
   /// Where the ground goes this frame: the whole square, and the patch a shadow can reach.
   struct GroundPlacement {
@@ -113,7 +111,6 @@ class ScenePasses {
   std::vector<float> stored_static_key_;  // and when they were stored (empty: nothing stored)
   std::vector<float> last_static_key_;    // the last frame's (stored only on a repeat)
   std::size_t triangles_ = 0;
-  std::optional<PixelBox> drawn_box_;
 };
 
 }  // namespace tumble::render::detail
