@@ -1,6 +1,5 @@
 // `tumble-draw`: the commands of `tumble` that draw (render, compare, view), which `tumble`
 // hands over to (command_line.hpp). Run directly it works the same.
-#include <csignal>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
@@ -12,9 +11,7 @@
 #include "command_line.hpp"
 
 int main(int argc, char** argv) {
-  // Past a file size limit (ulimit -f) a write must fail with EFBIG, an error the outputs
-  // report and clean up after, rather than kill the process with SIGXFSZ mid-file.
-  std::signal(SIGXFSZ, SIG_IGN);
+  tumble::app::prepare_process();
   CLI::App cli;
   tumble::app::configure_top_level(cli);
   tumble::app::RenderOptions render_options;

@@ -3,7 +3,6 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
@@ -48,9 +47,7 @@ void add_placeholder(CLI::App& cli, const CommandSummary& command) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  // Past a file size limit (ulimit -f) a write must fail with EFBIG, an error the outputs
-  // report and clean up after, rather than kill the process with SIGXFSZ mid-file.
-  std::signal(SIGXFSZ, SIG_IGN);
+  tumble::app::prepare_process();
   if (argc > 1 && tumble::app::is_drawing_command(argv[1])) return run_drawing_command(argv);
 
   CLI::App cli;
@@ -90,7 +87,6 @@ int main(int argc, char** argv) {
   if (stability.parsed()) {
     return tumble::app::run_stability(stability_options, std::cout, std::cerr);
   }
-  if (merge.parsed()) return tumble::app::run_merge(merge_options, std::cout, std::cerr);
   if (farm.parsed()) return tumble::app::run_farm(farm_options, std::cout, std::cerr);
   // A drawing command after an option (`tumble --x render`) reaches here: CLI11 has already
   // refused the unknown option, so this is only a safeguard.

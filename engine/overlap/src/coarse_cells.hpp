@@ -36,10 +36,7 @@ class CoarseCells {
   const CellCoordinates& coordinates(std::size_t i) const { return coordinates_[i]; }
   const CellCoordinates& vertex_cell(std::uint32_t v) const { return vertex_cell_[v]; }
   /// Whether all three vertices of face `t` lie in one cell (the face is listed there alone).
-  bool in_one_cell(std::uint32_t t) const {
-    const auto& f = mesh_.triangles[t];
-    return vertex_index_[f[0]] == vertex_index_[f[1]] && vertex_index_[f[0]] == vertex_index_[f[2]];
-  }
+  bool in_one_cell(std::uint32_t t) const { return face_cell_[t] != kSpanning; }
   /// Whether a vertex's coordinates lie in the filter's range (certified_orientation.hpp).
   bool in_filter_range(std::uint32_t v) const { return in_range_[v] != 0; }
   /// The cell a pair of faces whose boxes overlap belongs to (see above).
@@ -76,6 +73,9 @@ class CoarseCells {
   std::vector<std::uint32_t> faces_;
   std::vector<std::uint32_t> index_;  ///< per cell of the box: its index + 1, or 0 when empty
   std::vector<std::uint32_t> vertex_index_;  ///< per vertex: its cell's index in the box
+  /// Per face: the index in the box of the one cell its vertices share, or kSpanning.
+  std::vector<std::uint32_t> face_cell_;
+  static constexpr std::uint32_t kSpanning = 0xffffffff;
 };
 
 }  // namespace tumble::engine::detail

@@ -140,40 +140,45 @@ bool RegionCertificate::trace_loop() {
 /// Whether the projected loop is a simple polygon: consecutive edges meet only where they
 /// join (they turn, or go on along one line), and edges that are not consecutive are certainly
 /// apart. Pairs are found by a sweep along u over the edges' boxes (exact coordinates, so the
-/// boxes are exact too).
+/// boxes are exact too). The loop's first vertex is repeated at its end, so edge i runs from
+/// point i to point i + 1, and each edge's box is computed once (sorting by a box computed in
+/// the comparison, with two remainders per side, took a fifth of the certificates' time).
 bool RegionCertificate::loop_is_simple() {
   const std::size_t m = loop_.size();
-  plane_.resize(2 * m);
-  for (std::size_t i = 0; i < m; ++i) {
-    plane_[2 * i] = u(loop_[i]);
-    plane_[2 * i + 1] = v(loop_[i]);
+  plane_.resize(2 * (m + 1));
+  for (std::size_t i = 0; i <= m; ++i) {
+    plane_[2 * i] = u(loop_[i == m ? 0 : i]);
+    plane_[2 * i + 1] = v(loop_[i == m ? 0 : i]);
   }
-  const auto pu = [&](std::size_t i) { return plane_[2 * (i % m)]; };
-  const auto pv = [&](std::size_t i) { return plane_[2 * (i % m) + 1]; };
+  const auto pu = [&](std::size_t i) { return plane_[2 * i]; };
+  const auto pv = [&](std::size_t i) { return plane_[2 * i + 1]; };
   const auto orient = [&](std::size_t a, std::size_t b, std::size_t c) {
     return certified_orientation_2d(pu(a), pv(a), pu(b), pv(b), pu(c), pv(c));
   };
-  for (std::size_t i = 0; i < m; ++i) {
-    const std::size_t a = i + m - 1, b = i, c = i + 1;
+  for (std::size_t b = 0; b < m; ++b) {
+    const std::size_t a = b == 0 ? m - 1 : b - 1, c = b + 1;
     if (orient(a, b, c) == 0 && !certainly_onward(pu(a), pv(a), pu(b), pv(b), pu(c), pv(c))) {
       return false;
     }
   }
+  boxes_.resize(m);
   order_.resize(m);
-  for (std::size_t i = 0; i < m; ++i) order_[i] = static_cast<std::uint32_t>(i);
-  const auto low_u = [&](std::size_t i) { return std::min(pu(i), pu(i + 1)); };
+  for (std::size_t i = 0; i < m; ++i) {
+    boxes_[i] = {std::min(pu(i), pu(i + 1)), std::max(pu(i), pu(i + 1)), std::min(pv(i), pv(i + 1)),
+                 std::max(pv(i), pv(i + 1))};
+    order_[i] = static_cast<std::uint32_t>(i);
+  }
   std::sort(order_.begin(), order_.end(),
-            [&](std::uint32_t a, std::uint32_t b) { return low_u(a) < low_u(b); });
+            [&](std::uint32_t a, std::uint32_t b) { return boxes_[a].low_u < boxes_[b].low_u; });
   active_.clear();
   for (const std::uint32_t i : order_) {
-    const double low = low_u(i);
-    std::erase_if(active_, [&](std::uint32_t j) { return std::max(pu(j), pu(j + 1)) < low; });
+    const EdgeBox& box = boxes_[i];
+    std::erase_if(active_, [&](std::uint32_t j) { return boxes_[j].high_u < box.low_u; });
     for (const std::uint32_t j : active_) {
-      if ((i + 1) % m == j || (j + 1) % m == i) continue;  // consecutive: checked above
-      if (std::max(pv(i), pv(i + 1)) < std::min(pv(j), pv(j + 1)) ||
-          std::max(pv(j), pv(j + 1)) < std::min(pv(i), pv(i + 1))) {
-        continue;
+      if (i + 1 == j || j + 1 == i || (i == 0 && j + 1 == m) || (j == 0 && i + 1 == m)) {
+        continue;  // consecutive: checked above
       }
+      if (box.high_v < boxes_[j].low_v || boxes_[j].high_v < box.low_v) continue;
       const int first = orient(i, i + 1, j), second = orient(i, i + 1, j + 1);
       if (first != 0 && first == second) continue;
       const int third = orient(j, j + 1, i), fourth = orient(j, j + 1, i + 1);

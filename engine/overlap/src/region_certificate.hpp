@@ -46,6 +46,9 @@ class RegionCertificate {
   struct Edge {
     std::uint32_t from, to;
   };
+  struct EdgeBox {
+    double low_u, high_u, low_v, high_v;
+  };
   struct Slot {
     std::uint64_t key;
     std::int32_t uses;
@@ -64,7 +67,8 @@ class RegionCertificate {
   std::vector<Slot> slots_;
   std::vector<Edge> boundary_;
   std::vector<std::uint32_t> loop_;
-  std::vector<double> plane_;          ///< the loop's vertices: u, v
+  std::vector<double> plane_;          ///< the loop's vertices: u, v, the first again at the end
+  std::vector<EdgeBox> boxes_;         ///< of the loop's edges
   std::vector<std::uint32_t> order_;   ///< edges by least u
   std::vector<std::uint32_t> active_;  ///< edges the sweep line crosses
 };
