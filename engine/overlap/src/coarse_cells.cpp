@@ -21,9 +21,10 @@ constexpr std::size_t kBoxCellsPerFace = 2;        // at most this many cells in
 constexpr std::size_t kMinimumBoxCells = 1 << 16;  // ... or this many
 constexpr std::size_t kTooMany = std::numeric_limits<std::size_t>::max() / 2;
 
-/// v / cell rounded down, but for the rounding of the offset: monotone in v.
+/// v / cell rounded down, but for the rounding of the offset: monotone in v. Clamped by
+/// min and max rather than std::clamp, whose comparisons compile to branches (v is finite).
 std::int32_t coarse_cell_of(double v, double inverse) {
-  const double scaled = std::clamp(v * inverse, -kCoarseCellLimit, kCoarseCellLimit);
+  const double scaled = std::min(std::max(v * inverse, -kCoarseCellLimit), kCoarseCellLimit);
   return static_cast<std::int32_t>(static_cast<std::int64_t>(scaled + kCoarseCellLimit) -
                                    static_cast<std::int64_t>(kCoarseCellLimit));
 }
