@@ -28,30 +28,41 @@ namespace detail {
 render::MeshData shaded_mesh_data(const engine::TriangleMesh& mesh, double crease_angle_deg) {
   const double cos_crease = std::cos(crease_angle_deg * std::numbers::pi / 180.0);
 
-  // Area-weighted and unit face normals, and the triangles around each vertex.
-  std::vector<Eigen::Vector3d> face_normals(mesh.triangles.size());
-  std::vector<Eigen::Vector3d> unit_normals(mesh.triangles.size());
-  std::vector<std::vector<std::size_t>> faces_at(mesh.positions.size());
-  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+  // Area-weighted and unit face normals, and the triangles around each vertex: those of vertex
+  // v are around[start[v]] to around[start[v + 1]], in ascending order (one array for all, as
+  // a counting sort: a vector per vertex cost a million-triangle mesh two million allocations).
+  const std::size_t faces = mesh.triangles.size(), vertices = mesh.positions.size();
+  std::vector<Eigen::Vector3d> face_normals(faces);
+  std::vector<Eigen::Vector3d> unit_normals(faces);
+  std::vector<std::uint32_t> start(vertices + 1, 0);
+  for (std::size_t f = 0; f < faces; ++f) {
     const auto& t = mesh.triangles[f];
     const Eigen::Vector3d& a = mesh.positions[t[0]];
     face_normals[f] = (mesh.positions[t[1]] - a).cross(mesh.positions[t[2]] - a);
     unit_normals[f] = face_normals[f].normalized();
-    for (std::uint32_t v : t) faces_at[v].push_back(f);
+    for (std::uint32_t v : t) ++start[v + 1];
+  }
+  for (std::size_t v = 0; v < vertices; ++v) start[v + 1] += start[v];
+  std::vector<std::uint32_t> around(3 * faces), cursor(start.begin(), start.end() - 1);
+  for (std::size_t f = 0; f < faces; ++f) {
+    for (std::uint32_t v : mesh.triangles[f]) around[cursor[v]++] = static_cast<std::uint32_t>(f);
   }
 
   // Each corner's normal averages the faces within the crease angle of its own; corners of a
   // vertex with the same normal share one output vertex (all of them on a smooth surface), so
   // the mesh stays connected for the renderer's simplifier and its vertex cache.
   render::MeshData out;
-  out.indices.reserve(3 * mesh.triangles.size());
+  out.indices.reserve(3 * faces);
+  out.positions.reserve(vertices);
+  out.normals.reserve(vertices);
   constexpr std::uint32_t kNone = 0xffffffffu;
   std::vector<std::uint32_t> first_out(mesh.positions.size(), kNone);
   std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> more_out;  // crease vertices
-  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+  for (std::size_t f = 0; f < faces; ++f) {
     for (std::uint32_t v : mesh.triangles[f]) {
       Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-      for (std::size_t g : faces_at[v]) {
+      for (std::uint32_t i = start[v]; i < start[v + 1]; ++i) {
+        const std::uint32_t g = around[i];
         if (unit_normals[g].dot(unit_normals[f]) >= cos_crease) sum += face_normals[g];
       }
       const Eigen::Vector3f normal =
