@@ -26,14 +26,16 @@ namespace tumble::app {
 /// allocate and free blocks of megabytes. By default glibc maps each such block fresh and
 /// unmaps it when freed, so the next pass's blocks fault in their pages again; here blocks
 /// under 32 MiB come from the heap, which grows 64 MiB at a time and keeps what is freed for
-/// the next pass. `tumble inspect` of a 1M-triangle STL then takes about a third fewer page
-/// faults and 30% less time with the overlap checks (docs/performance.md, "Overlap checks").
-/// Set here, in the executables only: the libraries and the Python module leave a host
-/// process's heap as it is.
+/// the next pass, and every thread allocates from that one heap (a thread's own arena would
+/// fault in fresh pages for what the main heap holds free). `tumble inspect` of a
+/// 1M-triangle STL then takes a third of the page faults and a third less time with the
+/// overlap checks (docs/performance.md, "Overlap checks"). Set here, in the executables only:
+/// the libraries and the Python module leave a host process's heap as it is.
 inline void prepare_process() {
   std::signal(SIGXFSZ, SIG_IGN);
   mallopt(M_MMAP_THRESHOLD, 32 << 20);
   mallopt(M_TOP_PAD, 64 << 20);
+  mallopt(M_ARENA_MAX, 1);
 }
 
 /// A subcommand's name and its one-line summary (the help's command list).
