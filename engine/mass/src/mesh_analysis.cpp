@@ -209,9 +209,6 @@ struct TopologyPass {
   Topology topology;
   MomentIntegrals solid;
   bool concurrent = false;  ///< `solid` holds the integrals of the mesh as read
-  /// The overlap checks' certified regions, being made while the topology is found (valid
-  /// only then; see analyze_mesh).
-  std::future<std::shared_ptr<const detail::CertifiedRegions>> regions;
 };
 
 /// Edge topology and connected parts, into the report. On large meshes the edge counts (the
@@ -328,20 +325,15 @@ MomentIntegrals multi_part_integrals(TriangleMesh& mesh, const Eigen::Vector3d& 
   return (any_reversed || !pass.concurrent) ? solid_integrals(mesh, reference) : pass.solid;
 }
 
-unsigned overlap_threads(const MassOptions& options) {
-  return options.jobs != 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
-}
-
 /// Solid body: closed, consistently wound, every part oriented, positive volume.
 void solid_properties(TriangleMesh& mesh, const Eigen::Vector3d& reference,
                       const MassOptions& options, TopologyPass& pass, MeshReport& report) {
-  // Exact tests for parts that cross, nest, repeat or intersect themselves: an error unless
-  // allowed (overlap_policy.hpp). The regions first: they read the mesh, which must not change
-  // before they are done, whatever happens here.
-  detail::OverlapOptions search;
-  if (pass.regions.valid()) search.regions = pass.regions.get();
   require_closed_and_consistent(pass.topology, report.source);
-  search.threads = overlap_threads(options);
+  // Exact tests for parts that cross, nest, repeat or intersect themselves: an error unless
+  // allowed (overlap_policy.hpp).
+  detail::OverlapOptions search;
+  search.threads =
+      options.jobs != 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
   search.face_pairs = options.check_overlap;
   const detail::PartOverlaps overlaps =
       detail::find_part_overlaps(mesh, pass.topology.triangle_part, pass.topology.parts, search);
@@ -440,23 +432,10 @@ MeshReport analyze_mesh(TriangleMesh mesh, const MassOptions& options, const std
   report.shell = method == InertiaMethod::shell;
   if (mesh.triangles.empty()) fail(source, "contains no triangles");
 
-  scale_positions(mesh, options.scale, source);           // metres, finite
-  weld_and_clean(mesh, distinct_positions, report);       // welded, no degenerate triangles
-  const Eigen::Vector3d reference = bound(mesh, report);  // bounding-box centre
-  // On large meshes that will be checked, the overlap checks' regions (which need neither the
-  // parts nor a closed surface) are certified while the topology is found: each keeps a core
-  // busy where the other leaves it idle (on the 1M-triangle torus the checks then add about
-  // a fifth less to the inspection; docs/performance.md). Futures from std::async wait when
-  // destroyed, so `pass` (destroyed before `mesh`) never outlives the work on the mesh.
-  std::future<std::shared_ptr<const detail::CertifiedRegions>> regions;
-  const bool solid = method == InertiaMethod::exact || method == InertiaMethod::automatic;
-  if (solid && options.check_overlap && mesh.triangles.size() >= 200'000) {
-    regions = std::async(std::launch::async, [&mesh, threads = overlap_threads(options)] {
-      return detail::certify_regions(mesh, threads);
-    });
-  }
+  scale_positions(mesh, options.scale, source);                 // metres, finite
+  weld_and_clean(mesh, distinct_positions, report);             // welded, no degenerate triangles
+  const Eigen::Vector3d reference = bound(mesh, report);        // bounding-box centre
   TopologyPass pass = check_topology(mesh, reference, report);  // edges and parts
-  pass.regions = std::move(regions);
   switch (method) {
     case InertiaMethod::shell:
       shell_properties(mesh, reference, options, report);

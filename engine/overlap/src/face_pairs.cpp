@@ -70,92 +70,11 @@ FloatBox box_of(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen:
 /// What the filter can tell: certainly not, certainly, or not at all.
 enum class Filtered { kNo, kYes, kUnknown };
 
-/// The median extent of up to 1024 faces spread over the mesh (1 when there are none).
-double median_extent(const TriangleMesh& mesh) {
-  std::vector<double> extents;
-  const std::size_t n = mesh.triangles.size(), samples = std::min<std::size_t>(n, 1024);
-  for (std::size_t i = 0; i < samples; ++i) {
-    const Face& f = mesh.triangles[i * n / samples];
-    const Eigen::Vector3d& a = mesh.positions[f[0]];
-    const Eigen::Vector3d low = a.cwiseMin(mesh.positions[f[1]]).cwiseMin(mesh.positions[f[2]]);
-    const Eigen::Vector3d high = a.cwiseMax(mesh.positions[f[1]]).cwiseMax(mesh.positions[f[2]]);
-    const double extent = (high - low).maxCoeff();
-    if (std::isfinite(extent) && extent > 0.0) extents.push_back(extent);
-  }
-  if (extents.empty()) return 1.0;
-  const auto middle = extents.begin() + static_cast<std::ptrdiff_t>(extents.size() / 2);
-  std::nth_element(extents.begin(), middle, extents.end());
-  return *middle;
-}
-
-/// Small meshes on one thread: starting threads would cost more than it saves.
-unsigned threads_for(const TriangleMesh& mesh, unsigned threads) {
-  return static_cast<unsigned>(
-      std::clamp<std::size_t>(mesh.triangles.size() / 8192, 1, std::max(1u, threads)));
-}
-
-void check_face_count(const TriangleMesh& mesh) {
-  if (mesh.triangles.size() >= (std::size_t{1} << 29)) {
-    throw std::length_error("find_face_pairs: more than 2^29 - 1 faces");
-  }
-}
-
-}  // namespace
-
-/// Each coarse cell's faces certified apart or not, and the faces of the cells that are not
-/// (the fine grid's). The counts are sums, so they do not depend on the threads.
-struct CertifiedRegions {
-  CertifiedRegions(const TriangleMesh& of, unsigned threads)
-      : mesh(of), extent(median_extent(of)), cells(of, kCoarseCellsPerExtent * extent, threads) {}
-
-  const TriangleMesh& mesh;
-  const double extent;
-  const CoarseCells cells;
-  std::vector<std::uint8_t> uncertified;  ///< per coarse cell
-  std::vector<std::uint8_t> active;       ///< per face: 1 when in a cell not certified
-  bool any_uncertified = false;
-  std::size_t certified = 0;  ///< cells certified
-};
-
-std::shared_ptr<const CertifiedRegions> certify_regions(const TriangleMesh& mesh,
-                                                        unsigned threads) {
-  check_face_count(mesh);
-  threads = threads_for(mesh, threads);
-  auto regions = std::make_shared<CertifiedRegions>(mesh, threads);
-  if (mesh.triangles.empty() || !regions->cells.usable()) return regions;
-  const CoarseCells& cells = regions->cells;
-  regions->uncertified.assign(cells.size(), 0);
-  regions->active.assign(mesh.triangles.size(), 0);
-  std::atomic<std::size_t> next{0}, certified{0};
-  std::atomic<bool> any_uncertified{false};
-  on_threads(threads, [&](unsigned) {
-    RegionCertificate certificate(mesh, cells);
-    std::size_t mine = 0;
-    for (std::size_t i; (i = next.fetch_add(1, std::memory_order_relaxed)) < cells.size();) {
-      if (certificate.certify(cells.faces(i), cells.coordinates(i))) {
-        ++mine;
-        continue;
-      }
-      regions->uncertified[i] = 1;
-      any_uncertified.store(true, std::memory_order_relaxed);
-      for (const std::uint32_t f : cells.faces(i)) {
-        std::atomic_ref<std::uint8_t>(regions->active[f]).store(1, std::memory_order_relaxed);
-      }
-    }
-    certified.fetch_add(mine, std::memory_order_relaxed);
-  });
-  regions->certified = certified.load();
-  regions->any_uncertified = any_uncertified.load();
-  return regions;
-}
-
-namespace {
-
 /// One thread's counts and scratch memory.
 struct Tally {
   std::vector<PartPairCounts> parts;
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> meeting;
-  std::size_t candidates = 0, deferred = 0, deferred_faces = 0;
+  std::size_t candidates = 0, deferred = 0, deferred_faces = 0, regions = 0, certified = 0;
 };
 
 class PairSearch {
@@ -172,6 +91,8 @@ class PairSearch {
     return {n * thread / threads_, n * (thread + 1) / threads_};
   }
   void prepare(unsigned thread);
+  double median_extent() const;
+  void certify_regions(double cell);
   void find_pairs(double cell);
   void cross_levels(const FaceGrid& grid, unsigned thread);
   bool belongs_to_uncertified(std::uint32_t t, std::uint32_t u) const;
@@ -198,8 +119,10 @@ class PairSearch {
   std::vector<std::uint8_t> collinear_;
   std::vector<std::uint8_t> active_;  ///< 1: judged in the fine grid
   std::vector<Tally> tallies_;
-  std::shared_ptr<const CertifiedRegions> regions_;  ///< null, or usable cells
-  bool any_active_ = true;                           ///< whether any face is left for the fine grid
+  std::optional<CoarseCells> coarse_;
+  bool certifying_ = false;
+  bool any_active_ = true;                 ///< whether any face is left for the fine grid
+  std::vector<std::uint8_t> uncertified_;  ///< per coarse cell
 };
 
 PairSearch::PairSearch(const TriangleMesh& mesh, const std::vector<std::uint32_t>& triangle_part,
@@ -212,7 +135,9 @@ PairSearch::PairSearch(const TriangleMesh& mesh, const std::vector<std::uint32_t
       parts_(parts),
       exact_(exact),
       options_(options),
-      threads_(threads_for(mesh, options.threads)) {
+      // Small meshes on one thread: starting threads would cost more than it saves.
+      threads_(static_cast<unsigned>(std::clamp<std::size_t>(mesh.triangles.size() / 8192, 1,
+                                                             std::max(1u, options.threads)))) {
   tallies_.resize(threads_);
   for (Tally& tally : tallies_) tally.parts.resize(parts_);
 }
@@ -242,12 +167,56 @@ void PairSearch::prepare(unsigned thread) {
   }
 }
 
+/// The median extent of up to 1024 faces spread over the mesh (1 when there are none).
+double PairSearch::median_extent() const {
+  std::vector<double> extents;
+  const std::size_t n = faces_.size(), samples = std::min<std::size_t>(n, 1024);
+  for (std::size_t i = 0; i < samples; ++i) {
+    const Face& f = faces_[i * n / samples];
+    const Eigen::Vector3d& a = positions_[f[0]];
+    const Eigen::Vector3d low = a.cwiseMin(positions_[f[1]]).cwiseMin(positions_[f[2]]);
+    const Eigen::Vector3d high = a.cwiseMax(positions_[f[1]]).cwiseMax(positions_[f[2]]);
+    const double extent = (high - low).maxCoeff();
+    if (std::isfinite(extent) && extent > 0.0) extents.push_back(extent);
+  }
+  if (extents.empty()) return 1.0;
+  const auto middle = extents.begin() + static_cast<std::ptrdiff_t>(extents.size() / 2);
+  std::nth_element(extents.begin(), middle, extents.end());
+  return *middle;
+}
+
+/// Certifies each coarse cell's faces; marks the faces of the others for the fine grid.
+void PairSearch::certify_regions(double cell) {
+  coarse_.emplace(mesh_, cell, threads_);
+  if (!coarse_->usable()) return;
+  uncertified_.assign(coarse_->size(), 0);
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> any_uncertified{false};
+  on_threads(threads_, [&](unsigned thread) {
+    RegionCertificate certificate(mesh_, *coarse_);
+    Tally& tally = tallies_[thread];
+    for (std::size_t i; (i = next.fetch_add(1, std::memory_order_relaxed)) < coarse_->size();) {
+      ++tally.regions;
+      if (certificate.certify(coarse_->faces(i), coarse_->coordinates(i))) {
+        ++tally.certified;
+        continue;
+      }
+      uncertified_[i] = 1;
+      any_uncertified.store(true, std::memory_order_relaxed);
+      for (const std::uint32_t f : coarse_->faces(i)) {
+        std::atomic_ref<std::uint8_t>(active_[f]).store(1, std::memory_order_relaxed);
+      }
+    }
+  });
+  certifying_ = true;
+  any_active_ = any_uncertified.load();
+}
+
 /// Whether a pair of faces whose boxes overlap belongs to a coarse cell that is not certified.
 bool PairSearch::belongs_to_uncertified(std::uint32_t t, std::uint32_t u) const {
-  if (!regions_) return true;
-  const CoarseCells& cells = regions_->cells;
-  const std::optional<std::size_t> cell = cells.find(cells.pair_cell(t, u));
-  return !cell || regions_->uncertified[*cell] != 0;
+  if (!certifying_) return true;
+  const std::optional<std::size_t> cell = coarse_->find(coarse_->pair_cell(t, u));
+  return !cell || uncertified_[*cell] != 0;
 }
 
 /// Judges the pairs of faces of one fine cell that belong to it.
@@ -481,10 +450,8 @@ FacePairs PairSearch::total() {
     out.candidates += tally.candidates;
     out.deferred += tally.deferred;
     out.deferred_faces += tally.deferred_faces;
-  }
-  if (regions_) {
-    out.regions = regions_->cells.size();
-    out.certified = regions_->certified;
+    out.regions += tally.regions;
+    out.certified += tally.certified;
   }
   out.collinear = std::move(collinear_);
   return out;
@@ -493,18 +460,10 @@ FacePairs PairSearch::total() {
 FacePairs PairSearch::run() {
   const std::size_t n = faces_.size();
   collinear_.assign(n, 0);
-  if (options_.certify) {
-    const bool prepared = options_.regions && &options_.regions->mesh == &mesh_;
-    regions_ = prepared ? options_.regions : certify_regions(mesh_, threads_);
-    if (!regions_->cells.usable()) regions_.reset();
-  }
-  const double extent = regions_ ? regions_->extent : median_extent(mesh_);
-  if (regions_) {
-    active_ = regions_->active;
-    any_active_ = regions_->any_uncertified;
-  } else {
-    active_.assign(n, 1);
-  }
+  active_.assign(n, 0);
+  const double extent = median_extent();
+  if (options_.certify) certify_regions(kCoarseCellsPerExtent * extent);
+  if (!certifying_) std::fill(active_.begin(), active_.end(), std::uint8_t{1});
   if (any_active_) {
     // Per face, but only when some face is left for the fine grid (their pages cost time).
     boxes_.resize(n);
@@ -526,7 +485,9 @@ FloatBox face_box(const TriangleMesh& mesh, std::uint32_t t) {
 FacePairs find_face_pairs(const TriangleMesh& mesh, const std::vector<std::uint32_t>& triangle_part,
                           std::size_t parts, const ExactFaceTests& exact,
                           const FacePairOptions& options) {
-  check_face_count(mesh);
+  if (mesh.triangles.size() >= (std::size_t{1} << 29)) {
+    throw std::length_error("find_face_pairs: more than 2^29 - 1 faces");
+  }
   return PairSearch(mesh, triangle_part, parts, exact, options).run();
 }
 

@@ -16,12 +16,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <map>
-#include <memory>
 #include <utility>
 #include <vector>
 
 #include "engine/geometry/triangle_mesh.hpp"
-#include "engine/overlap/part_overlap.hpp"
 
 namespace tumble::engine::detail {
 
@@ -71,8 +69,6 @@ FloatBox face_box(const TriangleMesh& mesh, std::uint32_t t);
 
 struct FacePairOptions {
   unsigned threads = 1;
-  /// Made beforehand by certify_regions (part_overlap.hpp); null: made here when certifying.
-  std::shared_ptr<const CertifiedRegions> regions;
   /// Certify coarse cells' faces as a whole (region_certificate.hpp) before judging pairs.
   bool certify = true;
   /// false: every face and pair goes to the exact predicates (for tests and benchmarks).

@@ -398,7 +398,6 @@ PartOverlaps Analysis::run(const OverlapOptions& options) {
     search.threads = std::max(1u, options.threads);
     search.certify = options.method == FacePairMethod::kCertified;
     search.filter = options.method != FacePairMethod::kExact;
-    if (search.certify) search.regions = options.regions;
     FacePairs pairs = options.method == FacePairMethod::kReference
                           ? reference_pairs()
                           : find_face_pairs(mesh_, triangle_part_, parts_.size(), *this, search);

@@ -201,40 +201,5 @@ TEST(FacePairFilter, ThreadsAndCertificatesOnALargerTangledTorus) {
   EXPECT_THAT(same_verdicts(torus), HasSubstr("finding kind 0 parts 0 0"));
 }
 
-TEST(FacePairFilter, RegionsCertifiedBeforehandGiveTheSameVerdictsAndCounts) {
-  // The regions analyze_mesh certifies while the topology is found: the same findings and the
-  // same counts as regions certified in place, on a torus with crossings (regions certified
-  // and not); regions made of another mesh (a copy, even an equal one) are not used.
-  TriangleMesh torus = torus_mesh(1.0, 0.3, 200, 100);
-  for (Eigen::Vector3d& p : torus.positions) {
-    if (p.x() > 0.9 && std::abs(p.y()) < 0.05) p.x() -= 2.0;
-  }
-  const Topology topology = analyze_topology(torus);
-  OverlapOptions options;
-  options.threads = 2;
-  const PartOverlaps in_place =
-      find_part_overlaps(torus, topology.triangle_part, topology.parts, options);
-  ASSERT_GT(in_place.stats.certified, 0u);
-  ASSERT_LT(in_place.stats.certified, in_place.stats.regions);
-  ASSERT_GT(in_place.stats.candidates, 0u);
-
-  options.regions = certify_regions(torus, 2);
-  const PartOverlaps prepared =
-      find_part_overlaps(torus, topology.triangle_part, topology.parts, options);
-  EXPECT_EQ(described(prepared), described(in_place));
-  EXPECT_THAT(described(prepared), HasSubstr("finding kind 0 parts 0 0"));
-  EXPECT_EQ(prepared.stats.regions, in_place.stats.regions);
-  EXPECT_EQ(prepared.stats.certified, in_place.stats.certified);
-  EXPECT_EQ(prepared.stats.candidates, in_place.stats.candidates);
-
-  // Regions of an untouched torus handed with the tangled one's copy: ignored, so the
-  // crossings are still found.
-  const TriangleMesh untouched = torus_mesh(1.0, 0.3, 200, 100);
-  options.regions = certify_regions(untouched, 2);
-  const TriangleMesh copy = torus;
-  EXPECT_EQ(described(find_part_overlaps(copy, topology.triangle_part, topology.parts, options)),
-            described(in_place));
-}
-
 }  // namespace
 }  // namespace tumble::engine::detail

@@ -10,7 +10,6 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <memory>
 #include <optional>
 #include <vector>
 
@@ -56,23 +55,12 @@ enum class FacePairMethod {
   kReference,  ///< CGAL's box intersection and exact predicates for every pair (tests)
 };
 
-/// The coarse regions of a mesh's faces and which of them are certified (src/face_pairs.hpp):
-/// the part of the checks that needs neither the parts nor a closed surface, so it can run
-/// while the topology is found. Holds a reference to the mesh, which must not change meanwhile.
-struct CertifiedRegions;
-
-/// Certifies the coarse regions of `mesh` on `threads` threads, for OverlapOptions::regions.
-std::shared_ptr<const CertifiedRegions> certify_regions(const TriangleMesh& mesh, unsigned threads);
-
 struct OverlapOptions {
   unsigned threads = 1;  ///< for the pairs of faces (the reference method uses one)
   /// false: no pairs of faces are judged (no self-intersection, repeat or crossing is found);
   /// only the containment of parts in each other, which orients them, is decided.
   bool face_pairs = true;
   FacePairMethod method = FacePairMethod::kCertified;
-  /// The regions certify_regions made of this mesh beforehand (kCertified only); null: made
-  /// here. Regions made of another mesh are not used.
-  std::shared_ptr<const CertifiedRegions> regions;
 };
 
 /// How much work the pairs of faces took (for tests and benchmarks).
