@@ -250,6 +250,19 @@ std::string last_lines(const std::string& text) {
   return lines[lines.size() - 2] + " / " + lines.back();
 }
 
+std::vector<char*> environment_with_huge_pages() {
+  static std::string tunable = "GLIBC_TUNABLES=glibc.malloc.hugetlb=1";
+  std::vector<char*> entries;
+  bool tuned = false;
+  for (char** entry = environ; *entry != nullptr; ++entry) {
+    tuned = tuned || std::strncmp(*entry, "GLIBC_TUNABLES=", 15) == 0;
+    entries.push_back(*entry);
+  }
+  if (!tuned) entries.push_back(tunable.data());
+  entries.push_back(nullptr);
+  return entries;
+}
+
 std::string last_line(const std::string& text) {
   std::size_t end = text.size();
   while (end > 0 && (text[end - 1] == '\n' || text[end - 1] == ' ')) --end;

@@ -34,9 +34,8 @@
 #include <vector>
 
 #include "base/errors.hpp"
+#include "base/process.hpp"
 #include "worker_protocol.hpp"
-
-extern char** environ;
 
 namespace tumble::engine::detail {
 namespace {
@@ -209,24 +208,6 @@ struct Descriptor {
   int release() { return std::exchange(fd, -1); }
 };
 
-/// The environment a worker starts with: ours, and glibc's tunable that advises malloc's large
-/// blocks as transparent huge pages, unless GLIBC_TUNABLES is set already. assimp's OBJ reader
-/// fills a 16 MiB line buffer for every file however small: 4,096 page faults with 4 KiB pages,
-/// half the worker's CPU time on a 12-triangle cube; with huge pages (glibc 2.35 and later, the
-/// kernel's transparent huge pages in its default "madvise" mode) a few. Elsewhere a no-op.
-std::vector<char*> worker_environment() {
-  static std::string tunable = "GLIBC_TUNABLES=glibc.malloc.hugetlb=1";
-  std::vector<char*> entries;
-  bool tuned = false;
-  for (char** entry = environ; *entry != nullptr; ++entry) {
-    tuned = tuned || std::strncmp(*entry, "GLIBC_TUNABLES=", 15) == 0;
-    entries.push_back(*entry);
-  }
-  if (!tuned) entries.push_back(tunable.data());
-  entries.push_back(nullptr);
-  return entries;
-}
-
 /// Starts `program` as a worker holding `socket` and `answer` at their fixed numbers, with
 /// stdin and stdout on /dev/null and every signal at its default action, unblocked. Returns
 /// its process id, or -1 with errno set.
@@ -247,7 +228,10 @@ pid_t spawn_worker(const std::filesystem::path& program, int socket, int answer)
   const std::string path = program.string();
   std::array<char*, 4> argv{const_cast<char*>(path.c_str()), const_cast<char*>(kWorkerFlag),
                             const_cast<char*>(parent.c_str()), nullptr};
-  std::vector<char*> environment = worker_environment();
+  // assimp's OBJ reader fills a 16 MiB line buffer for every file however small: 4,096 page
+  // faults with 4 KiB pages, half the worker's CPU time on a 12-triangle cube; a few with
+  // huge pages.
+  std::vector<char*> environment = environment_with_huge_pages();
   pid_t child = -1;
   const int error = ::posix_spawn(&child, path.c_str(), &setup.actions, &setup.attributes,
                                   argv.data(), environment.data());
