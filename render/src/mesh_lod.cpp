@@ -120,6 +120,38 @@ std::size_t cluster_first_level(const std::vector<Eigen::Vector3f>& positions,
   return made;
 }
 
+/// Simplifies `source` toward `target` indices by edge collapses, over the vertices it uses
+/// only, renumbered in their order: meshopt_simplify's cost grows with the vertex count it is
+/// given as well as with the indices, so given the full mesh's vertices every level cost about
+/// as much as the first (on a 1M-triangle torus 300 ms a level, against 26 ms for a
+/// 31,000-triangle level given its own 16,000 vertices). Returns the count of `out`'s indices
+/// (into `positions`), and the step's error in mesh units.
+std::size_t collapse_edges(const std::vector<Eigen::Vector3f>& positions,
+                           std::span<const std::uint32_t> source, std::size_t target,
+                           std::vector<std::uint32_t>& out, float& error) {
+  constexpr std::uint32_t kUnused = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> compact(positions.size(), kUnused), original;
+  for (const std::uint32_t v : source) compact[v] = 0;
+  std::vector<Eigen::Vector3f> kept;
+  for (std::size_t v = 0; v < positions.size(); ++v) {
+    if (compact[v] == kUnused) continue;
+    compact[v] = static_cast<std::uint32_t>(original.size());
+    original.push_back(static_cast<std::uint32_t>(v));
+    kept.push_back(positions[v]);
+  }
+  std::vector<std::uint32_t> renumbered(source.size());
+  for (std::size_t i = 0; i < source.size(); ++i) renumbered[i] = compact[source[i]];
+  out.resize(source.size());
+  float relative = 0.0f;
+  const std::size_t made = meshopt_simplify(
+      out.data(), renumbered.data(), renumbered.size(), kept.front().data(), kept.size(),
+      sizeof(Eigen::Vector3f), target, std::numeric_limits<float>::max(), 0, &relative);
+  for (std::size_t i = 0; i < made; ++i) out[i] = original[out[i]];
+  error =
+      relative * meshopt_simplifyScale(kept.front().data(), kept.size(), sizeof(Eigen::Vector3f));
+  return made;
+}
+
 }  // namespace
 
 LodChain::LodChain(std::vector<Eigen::Vector3f> positions, std::vector<Eigen::Vector3f> normals,
@@ -157,11 +189,9 @@ bool LodChain::grow() {
   if (target / 3 >= kCoarsestTriangles && target < source.size()) {
     if (first && source.size() / 3 >= kClusterTriangles) {
       made = cluster_first_level(positions_, normals_, source, target, next, step_error);
+      step_error *= scale_;
     } else {
-      next.resize(source.size());
-      made = meshopt_simplify(next.data(), source.data(), source.size(), positions_.front().data(),
-                              positions_.size(), sizeof(Eigen::Vector3f), target,
-                              std::numeric_limits<float>::max(), 0, &step_error);
+      made = collapse_edges(positions_, source, target, next, step_error);
     }
   }
   if (made == 0 || static_cast<double>(made) > kLeastShrink * static_cast<double>(source.size())) {
@@ -171,7 +201,7 @@ bool LodChain::grow() {
     previous_ = {};
     return false;
   }
-  quadric_error_ += step_error * scale_;
+  quadric_error_ += step_error;
   const float measured = interior_deviation(positions_, normals_, next.data(), made);
   levels_.push_back(
       {indices_.size(), made, std::max({quadric_error_, measured, levels_.back().error})});
