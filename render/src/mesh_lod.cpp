@@ -80,7 +80,8 @@ namespace {
 /// edge collapses over the full mesh (0.05 s against 0.45 s on a million triangles). Clustering by
 /// position alone would join the copies of a vertex that sit on a crease (one per normal), so it
 /// runs on the positions' unique vertices and each corner then takes back the copy whose normal
-/// lies closest to its triangle's.
+/// lies closest to its triangle's. Returns the count of `out`'s indices, and the error in mesh
+/// units.
 std::size_t cluster_first_level(const std::vector<Eigen::Vector3f>& positions,
                                 const std::vector<Eigen::Vector3f>& normals,
                                 std::span<const std::uint32_t> full, std::size_t target,
@@ -102,6 +103,7 @@ std::size_t cluster_first_level(const std::vector<Eigen::Vector3f>& positions,
   const std::size_t made =
       meshopt_simplifySloppy(out.data(), shadow.data(), shadow.size(), positions.front().data(), n,
                              sizeof(float) * 3, target, std::numeric_limits<float>::max(), &error);
+  error *= meshopt_simplifyScale(positions.front().data(), n, sizeof(float) * 3);  // mesh units
   for (std::size_t t = 0; t + 2 < made; t += 3) {
     const Eigen::Vector3f& a = positions[out[t]];
     const Eigen::Vector3f face = (positions[out[t + 1]] - a).cross(positions[out[t + 2]] - a);
@@ -168,8 +170,6 @@ LodChain::LodChain(std::vector<Eigen::Vector3f> positions, std::vector<Eigen::Ve
     normals_ = {};
     return;
   }
-  scale_ =
-      meshopt_simplifyScale(positions_.front().data(), positions_.size(), sizeof(Eigen::Vector3f));
 }
 
 bool LodChain::grow() {
@@ -189,7 +189,6 @@ bool LodChain::grow() {
   if (target / 3 >= kCoarsestTriangles && target < source.size()) {
     if (first && source.size() / 3 >= kClusterTriangles) {
       made = cluster_first_level(positions_, normals_, source, target, next, step_error);
-      step_error *= scale_;
     } else {
       made = collapse_edges(positions_, source, target, next, step_error);
     }

@@ -50,7 +50,6 @@ class LodChain {
   std::vector<LodLevel> levels_;
   std::vector<std::uint32_t> indices_;
   std::vector<std::uint32_t> previous_;  ///< the coarsest copy's indices (none yet: empty)
-  float scale_ = 1.0f;                   ///< meshoptimizer's relative errors to mesh units
   float quadric_error_ = 0.0f;           ///< meshoptimizer's errors summed along the chain
   bool complete_ = false;
 };

@@ -8,12 +8,15 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "base/errors.hpp"
 #include "support/run_command.hpp"
@@ -170,6 +173,45 @@ TEST(Process, LastLinesForOneLineErrors) {
   EXPECT_EQ(last_line("one"), "one");
   EXPECT_EQ(last_line("\n"), "");
   EXPECT_EQ(last_line(""), "");
+}
+
+/// The entries of an environment, which must end with a null (a failure if it does not).
+std::vector<std::string> entries_of(const std::vector<char*>& environment) {
+  if (environment.empty() || environment.back() != nullptr) {
+    ADD_FAILURE() << "the environment does not end with a null";
+    return {};
+  }
+  std::vector<std::string> out;
+  for (const char* entry : environment) {
+    if (entry != nullptr) out.emplace_back(entry);
+  }
+  return out;
+}
+
+TEST(Process, EnvironmentWithHugePagesAddsTheTunableUnlessOneIsSet) {
+  const char* before = std::getenv("GLIBC_TUNABLES");
+  const std::string saved = before != nullptr ? before : "";
+  ::setenv("TUMBLE_TEST_MARK", "kept", 1);
+
+  ::unsetenv("GLIBC_TUNABLES");
+  std::vector<std::string> entries = entries_of(environment_with_huge_pages());
+  EXPECT_THAT(entries, ::testing::Contains("TUMBLE_TEST_MARK=kept"));
+  EXPECT_EQ(std::count(entries.begin(), entries.end(), "GLIBC_TUNABLES=glibc.malloc.hugetlb=1"), 1);
+
+  // A tunable the user set is theirs: left as it is, none added.
+  ::setenv("GLIBC_TUNABLES", "glibc.malloc.check=0", 1);
+  entries = entries_of(environment_with_huge_pages());
+  EXPECT_THAT(entries, ::testing::Contains("GLIBC_TUNABLES=glibc.malloc.check=0"));
+  EXPECT_EQ(std::count_if(entries.begin(), entries.end(),
+                          [](const std::string& e) { return e.starts_with("GLIBC_TUNABLES="); }),
+            1);
+
+  if (before != nullptr) {
+    ::setenv("GLIBC_TUNABLES", saved.c_str(), 1);
+  } else {
+    ::unsetenv("GLIBC_TUNABLES");
+  }
+  ::unsetenv("TUMBLE_TEST_MARK");
 }
 
 }  // namespace

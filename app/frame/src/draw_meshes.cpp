@@ -56,7 +56,7 @@ render::MeshData shaded_mesh_data(const engine::TriangleMesh& mesh, double creas
   out.positions.reserve(vertices);
   out.normals.reserve(vertices);
   constexpr std::uint32_t kNone = 0xffffffffu;
-  std::vector<std::uint32_t> first_out(mesh.positions.size(), kNone);
+  std::vector<std::uint32_t> first_out(vertices, kNone);
   std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> more_out;  // crease vertices
   for (std::size_t f = 0; f < faces; ++f) {
     for (std::uint32_t v : mesh.triangles[f]) {
