@@ -60,6 +60,7 @@ MeshData unit_cylinder(int segments) {
   add_side(mesh, segments, 1.0f, 1.0f);
   add_cap(mesh, segments, 0.0f, -1.0f);
   add_cap(mesh, segments, 1.0f, 1.0f);
+  mesh.closed = true;  // outward by construction (tests/render/arrow_geometry_test.cpp)
   return mesh;
 }
 
@@ -67,6 +68,7 @@ MeshData unit_cone(int segments) {
   MeshData mesh;
   add_side(mesh, segments, 1.0f, 0.0f);
   add_cap(mesh, segments, 0.0f, -1.0f);
+  mesh.closed = true;
   return mesh;
 }
 

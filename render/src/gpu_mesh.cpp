@@ -80,6 +80,7 @@ void GpuMesh::refine_for(float pixels_per_unit) {
 GpuMesh upload_mesh(const MeshData& mesh, bool with_lod) {
   validate(mesh);
   GpuMesh gpu;
+  gpu.closed = mesh.closed;
 
   // Interleave position + normal; flat shading duplicates each triangle's corners.
   std::vector<float> vertices;

@@ -28,6 +28,7 @@ struct GpuMesh {
   std::size_t index_capacity = 0;  ///< indices index_buffer holds room for
   Eigen::AlignedBox3f box;         // bounding box in the body frame
   float radius = 0.0f;             // bounding sphere about the box's centre
+  bool closed = false;             // MeshData::closed: back faces are hidden from outside
 
   Eigen::Vector3f centre() const { return box.center(); }
 

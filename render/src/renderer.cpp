@@ -83,9 +83,7 @@ void Renderer::render(const DrawList& frame, Image& out, const ExtraPass& extra)
   // Later draws and the read-back: the output.
   if (impl_->fxaa) {
     impl_->fxaa->apply(context,
-                       impl_->filter_drawn_region
-                           ? impl_->scene->drawn_box(frame, context.width(), context.height())
-                           : std::nullopt);
+                       impl_->filter_drawn_region ? impl_->scene->drawn_box() : std::nullopt);
   }
   if (frame.has_overlays()) {
     if (!impl_->overlay) impl_->overlay = std::make_unique<detail::OverlayPass>();
@@ -96,6 +94,8 @@ void Renderer::render(const DrawList& frame, Image& out, const ExtraPass& extra)
     context.make_current();  // the readback may have bound the resolve target
   }
   if (extra.draw) extra.draw(context.width(), context.height());
+  // Without a post-process, the overlay and the extra pass drew into the scene's framebuffer.
+  if (!impl_->fxaa && (frame.has_overlays() || extra.draw)) impl_->scene->drawn_over();
   context.read_pixels(out);
 }
 

@@ -96,7 +96,9 @@ void ScenePasses::draw(const DrawList& frame, std::vector<GpuMesh>& meshes,
   view_projection_ =
       projection_matrix(frame.camera, static_cast<float>(width) / static_cast<float>(height)) *
       view;
+  near_plane_ = frame.camera.near_plane;
   collect_solids(frame, meshes, view, height);
+  drawn_ = find_drawn_box(frame, width, height);
 
   // Shadow map from the key light, only when there is a ground to receive it.
   shadow_valid_ = false;
@@ -136,7 +138,8 @@ void ScenePasses::draw(const DrawList& frame, std::vector<GpuMesh>& meshes,
   glBindVertexArray(0);
 }
 
-std::optional<PixelBox> ScenePasses::drawn_box(const DrawList& frame, int width, int height) const {
+std::optional<PixelBox> ScenePasses::find_drawn_box(const DrawList& frame, int width,
+                                                    int height) const {
   if (frame.style.ground) return std::nullopt;
   float low_x = std::numeric_limits<float>::infinity(), low_y = low_x;
   float high_x = -low_x, high_y = -low_x;
@@ -389,7 +392,18 @@ void ScenePasses::draw_solids(bool translucent) {
     const Eigen::Matrix3f normals = solid->model.block<3, 3>(0, 0).inverse().transpose();
     glUniformMatrix3fv(normal_matrix, 1, GL_FALSE, normals.data());
     set_colour(mesh_program_, solid->colour);
-    if (translucent) {
+    if (!translucent) {
+      // A closed mesh's back faces lie behind its front faces seen from outside it, unless the
+      // near plane cuts it open: culled when its bounding sphere lies wholly beyond the near
+      // plane. A mirroring pose turns the winding around.
+      if (solid->mesh->closed &&
+          solid->view_depth - solid->mesh->radius * solid->scale > near_plane_) {
+        glEnable(GL_CULL_FACE);
+        glCullFace(solid->model.block<3, 3>(0, 0).determinant() > 0.0f ? GL_BACK : GL_FRONT);
+      } else {
+        glDisable(GL_CULL_FACE);
+      }
+    } else {
       glCullFace(GL_FRONT);
       solid->mesh->draw(solid->level);
       glCullFace(GL_BACK);

@@ -31,13 +31,16 @@ class ScenePasses {
   /// std::invalid_argument for a MeshId this renderer never returned.
   void draw(const DrawList& frame, std::vector<GpuMesh>& meshes, OffscreenContext& context);
 
-  /// Where the last draw(), of `frame` at `width` x `height`, put anything but the background:
-  /// a box holding every solid's projected bounding box and every line and point with its
-  /// width, grown by 8 pixels and out to whole 8-pixel blocks; outside it the frame is the
-  /// background gradient alone, which the anti-aliasing filter leaves as it is. Empty when that
-  /// cannot be bounded (a ground, or something reaching behind the camera): then the whole
-  /// frame counts.
-  std::optional<PixelBox> drawn_box(const DrawList& frame, int width, int height) const;
+  /// Where the last draw() put anything but the background: a box holding every solid's
+  /// projected bounding box and every line and point with its width, grown by 8 pixels and out
+  /// to whole 8-pixel blocks; outside it the frame is the background gradient alone, which the
+  /// anti-aliasing filter leaves as it is. Empty when that cannot be bounded (a ground, or
+  /// something reaching behind the camera): then the whole frame counts.
+  const std::optional<PixelBox>& drawn_box() const { return drawn_; }
+
+  /// Says that something other than draw() drew into the scene FBO after the last draw() (the
+  /// overlay, without a post-process): the next frame restores all of the stored layers.
+  void drawn_over() { written_.reset(); }
 
   /// Triangles drawn into the image by the last draw() (shadow pass not counted).
   std::size_t last_frame_triangles() const { return triangles_; }
@@ -64,6 +67,7 @@ class ScenePasses {
     float patch_half_size;
   };
 
+  std::optional<PixelBox> find_drawn_box(const DrawList& frame, int width, int height) const;
   void collect_solids(const DrawList& frame, std::vector<GpuMesh>& meshes,
                       const Eigen::Matrix4f& view, int height);
   void draw_shadow_map(const DrawList& frame);
@@ -101,6 +105,7 @@ class ScenePasses {
   std::vector<float> stream_;
   Eigen::Matrix4f view_projection_ = Eigen::Matrix4f::Identity();
   Eigen::Matrix4f light_view_projection_ = Eigen::Matrix4f::Identity();
+  float near_plane_ = 0.0f;  // this frame's camera's
   Eigen::Vector3f scene_centre_ = Eigen::Vector3f::Zero();
   float scene_radius_ = 0.0f;
   bool shadow_valid_ = false;
@@ -111,6 +116,10 @@ class ScenePasses {
   std::vector<float> stored_static_key_;  // and when they were stored (empty: nothing stored)
   std::vector<float> last_static_key_;    // the last frame's (stored only on a repeat)
   std::size_t triangles_ = 0;
+  std::optional<PixelBox> drawn_;  // drawn_box()
+  /// Where the scene FBO holds anything but the stored layers (outside it, it holds them):
+  /// the last frame's drawn box, when it started from them. Empty: unknown, restore them all.
+  std::optional<PixelBox> written_;
 };
 
 }  // namespace tumble::render::detail

@@ -9,6 +9,8 @@
 // (tests/render/static_layers_test.cpp).
 #include <Eigen/Core>
 #include <initializer_list>
+#include <optional>
+#include <utility>
 
 #include "scene_passes.hpp"
 
@@ -50,8 +52,16 @@ bool ScenePasses::static_layers(const DrawList& frame, const GroundPlacement& gr
     append_static_key(static_key_, style.key_light_from);
     append_static_key(static_key_, style.ground_colour);
   }
+  const std::optional<PixelBox> written = std::exchange(written_, std::nullopt);
   if (static_key_ == stored_static_key_ && context.has_stored_scene()) {
-    context.restore_scene(/*depth=*/style.ground);  // the background writes no depth
+    if (written && !style.ground) {
+      // Only the last frame's drawn box differs from the stored layers (the background alone:
+      // no depth to restore).
+      context.restore_scene_colour(written->x0, written->y0, written->x1, written->y1);
+    } else {
+      context.restore_scene(/*depth=*/style.ground);  // the background writes no depth
+    }
+    written_ = drawn_;
     return true;
   }
   // Stored only when a frame repeats the last one's key: a camera that moves every frame would
@@ -69,6 +79,7 @@ bool ScenePasses::static_layers(const DrawList& frame, const GroundPlacement& gr
     return false;
   }
   stored_static_key_ = static_key_;
+  written_ = drawn_;
   return true;
 }
 

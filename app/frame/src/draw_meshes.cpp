@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "app/frame/frame_builder.hpp"
+#include "engine/geometry/mesh_topology.hpp"
 #include "engine/geometry/primitive_meshes.hpp"
 
 namespace tumble::app {
@@ -83,6 +84,7 @@ render::MeshData shaded_mesh_data(const engine::TriangleMesh& mesh, double creas
       out.indices.push_back(index);
     }
   }
+  out.closed = engine::bounds_outward_solids(mesh);
   return out;
 }
 
@@ -96,6 +98,7 @@ render::MeshData ellipsoid_mesh_data(const Eigen::Vector3d& radii) {
     out.normals.push_back(p.cwiseProduct(inverse_squared).normalized().cast<float>());
   }
   for (const auto& t : mesh.triangles) out.indices.insert(out.indices.end(), t.begin(), t.end());
+  out.closed = engine::bounds_outward_solids(mesh);
   return out;
 }
 

@@ -228,4 +228,22 @@ Topology analyze_topology(const TriangleMesh& mesh) {
   return topology;
 }
 
+bool bounds_outward_solids(const TriangleMesh& mesh) {
+  for (const auto& t : mesh.triangles) {
+    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) return false;
+  }
+  Topology topology;
+  count_edge_uses(mesh, topology);
+  if (!topology.closed()) return false;
+  find_parts(mesh, topology);
+  // Six times each part's signed volume: the divergence theorem over its triangles.
+  std::vector<double> volume(topology.parts, 0.0);
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const auto& t = mesh.triangles[f];
+    volume[topology.triangle_part[f]] +=
+        mesh.positions[t[0]].dot(mesh.positions[t[1]].cross(mesh.positions[t[2]]));
+  }
+  return std::all_of(volume.begin(), volume.end(), [](double v) { return v > 0.0; });
+}
+
 }  // namespace tumble::engine

@@ -376,5 +376,51 @@ TEST(AnalyzeTopology, EdgeCountsMatchTheDefinitionOnDamagedMeshes) {
   }
 }
 
+/// The mesh with every triangle's winding turned around.
+TriangleMesh turned_inside_out(TriangleMesh mesh) {
+  for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
+  return mesh;
+}
+
+/// `a` and `b` in one mesh (b's vertices after a's).
+TriangleMesh side_by_side(const TriangleMesh& a, const TriangleMesh& b) {
+  TriangleMesh mesh = a;
+  const auto base = static_cast<std::uint32_t>(a.positions.size());
+  mesh.positions.insert(mesh.positions.end(), b.positions.begin(), b.positions.end());
+  for (auto t : b.triangles) mesh.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  return mesh;
+}
+
+TEST(BoundsOutwardSolids, HoldsForClosedOutwardMeshesOfOneOrMoreParts) {
+  EXPECT_TRUE(bounds_outward_solids(tetrahedron()));
+  EXPECT_TRUE(bounds_outward_solids(box_mesh({1.0, 2.0, 3.0})));
+  TriangleMesh far_box = box_mesh({1.0, 1.0, 1.0});
+  for (auto& p : far_box.positions) p.x() += 5.0;
+  EXPECT_TRUE(bounds_outward_solids(side_by_side(tetrahedron(), far_box)));
+}
+
+TEST(BoundsOutwardSolids, FailsForInvertedOpenRepeatedOrHollowMeshes) {
+  EXPECT_FALSE(bounds_outward_solids(turned_inside_out(tetrahedron())));
+  TriangleMesh open = box_mesh({1.0, 1.0, 1.0});
+  open.triangles.pop_back();
+  EXPECT_FALSE(bounds_outward_solids(open));
+  // One face wound the other way: its three edges run twice in one direction.
+  TriangleMesh inconsistent = tetrahedron();
+  std::swap(inconsistent.triangles[0][1], inconsistent.triangles[0][2]);
+  EXPECT_FALSE(bounds_outward_solids(inconsistent));
+  TriangleMesh repeated = tetrahedron();
+  repeated.triangles.push_back({0, 0, 1});
+  repeated.triangles.push_back({1, 0, 0});
+  EXPECT_FALSE(bounds_outward_solids(repeated));
+  // A cavity (an inward box inside an outward one) and an inverted part beside an outward
+  // one: closed, but an inward-facing part shows its back faces from somewhere outside it.
+  TriangleMesh cavity = box_mesh({0.5, 0.5, 0.5});
+  EXPECT_FALSE(
+      bounds_outward_solids(side_by_side(box_mesh({2.0, 2.0, 2.0}), turned_inside_out(cavity))));
+  TriangleMesh beside = box_mesh({1.0, 1.0, 1.0});
+  for (auto& p : beside.positions) p.y() += 4.0;
+  EXPECT_FALSE(bounds_outward_solids(side_by_side(tetrahedron(), turned_inside_out(beside))));
+}
+
 }  // namespace
 }  // namespace tumble::engine

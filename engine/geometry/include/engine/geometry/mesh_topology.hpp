@@ -52,4 +52,11 @@ Topology analyze_topology(const TriangleMesh& mesh);
 void count_edge_uses(const TriangleMesh& mesh, Topology& topology);
 void find_parts(const TriangleMesh& mesh, Topology& topology);
 
+/// True when the welded `mesh` bounds solids and faces out of them: no triangle repeats a
+/// vertex, every edge is run as often in one direction as in the other (Topology::closed), and
+/// every connected part encloses a positive volume. Seen from outside, such a mesh shows only
+/// the front of its triangles (a renderer may skip the backs). False for open surfaces,
+/// inconsistent windings, inverted parts and cavities.
+bool bounds_outward_solids(const TriangleMesh& mesh);
+
 }  // namespace tumble::engine
