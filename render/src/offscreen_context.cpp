@@ -258,21 +258,22 @@ void OffscreenContext::restore_scene(bool depth) {
   if (!depth) glClear(GL_DEPTH_BUFFER_BIT);  // llvmpipe marks its tiles cleared: no memory pass
 }
 
-void OffscreenContext::restore_scene_colour(int x0, int y0, int x1, int y1) {
+void OffscreenContext::restore_scene_box(int x0, int y0, int x1, int y1) {
   if (!impl_->layers.fbo) throw std::logic_error("offscreen context: no stored scene to restore");
   x0 = std::clamp(x0, 0, width_);
   x1 = std::clamp(x1, x0, width_);
   y0 = std::clamp(y0, 0, height_);
   y1 = std::clamp(y1, y0, height_);
   // The same rectangle on both sides and no scissor: Mesa still copies memory (a scissored
-  // blit would run a shader instead).
+  // blit would run a shader instead). Copying the depth too costs less than clearing it: a
+  // clear reaches every tile of the frame.
   glBindFramebuffer(GL_READ_FRAMEBUFFER, impl_->layers.fbo.get());
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, impl_->draw.fbo.get());
   if (x0 < x1 && y0 < y1) {
-    glBlitFramebuffer(x0, y0, x1, y1, x0, y0, x1, y1, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBlitFramebuffer(x0, y0, x1, y1, x0, y0, x1, y1, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT,
+                      GL_NEAREST);
   }
   glBindFramebuffer(GL_FRAMEBUFFER, impl_->fbo(target_));
-  glClear(GL_DEPTH_BUFFER_BIT);
 }
 
 void OffscreenContext::copy_colour_and_depth(unsigned int from, unsigned int to, bool depth) {

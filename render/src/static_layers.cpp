@@ -55,9 +55,9 @@ bool ScenePasses::static_layers(const DrawList& frame, const GroundPlacement& gr
   const std::optional<PixelBox> written = std::exchange(written_, std::nullopt);
   if (static_key_ == stored_static_key_ && context.has_stored_scene()) {
     if (written && !style.ground) {
-      // Only the last frame's drawn box differs from the stored layers (the background alone:
-      // no depth to restore).
-      context.restore_scene_colour(written->x0, written->y0, written->x1, written->y1);
+      // Only the last frame's drawn box differs from the stored layers, in colour and depth
+      // (their depth is the cleared one: the background writes none).
+      context.restore_scene_box(written->x0, written->y0, written->x1, written->y1);
     } else {
       context.restore_scene(/*depth=*/style.ground);  // the background writes no depth
     }

@@ -62,10 +62,10 @@ class OffscreenContext {
   /// false, only the colour, and the depth is cleared instead (for stored layers that wrote no
   /// depth). Throws std::logic_error when nothing is stored (a resize drops the stored copy).
   void restore_scene(bool depth = true);
-  /// As restore_scene(false), but copies only the colour within [x0, x1) x [y0, y1) (GL's
+  /// As restore_scene(), but copies colour and depth only within [x0, x1) x [y0, y1) (GL's
   /// pixel coordinates, row 0 at the bottom): for a scene FBO drawn over only there since the
-  /// stored copy was last restored or made. The depth is cleared everywhere.
-  void restore_scene_colour(int x0, int y0, int x1, int y1);
+  /// stored copy was last restored or made.
+  void restore_scene_box(int x0, int y0, int x1, int y1);
 
   int width() const { return width_; }
   int height() const { return height_; }
