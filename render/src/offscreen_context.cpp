@@ -110,6 +110,7 @@ struct OffscreenContext::Impl {
   detail::OffscreenFramebuffer
       output;  // the post-process's result (draw's colour is then a texture)
   detail::OffscreenFramebuffer layers;  // a stored copy of draw's colour and depth, made lazily
+  detail::OffscreenFramebuffer panels;  // stored boxes of the output's colour, made lazily
   std::vector<std::uint8_t> bottom_up;  // glReadPixels rows, flipped into the Image
 
   /// The FBO draws go to for `target`.
@@ -178,7 +179,8 @@ void OffscreenContext::make_framebuffers(bool post_process) {
   impl_->draw = std::move(*draw);
   impl_->resolve = std::move(resolve);
   impl_->output = std::move(output);
-  impl_->layers = Framebuffer{};  // the old size's copy: made again by the next store
+  impl_->layers = Framebuffer{};  // the old size's copies: made again by the next store
+  impl_->panels = Framebuffer{};
   samples_ = wanted;
   glBindFramebuffer(GL_FRAMEBUFFER, impl_->fbo(target_));
   glViewport(0, 0, width_, height_);
@@ -273,6 +275,52 @@ void OffscreenContext::restore_scene_box(int x0, int y0, int x1, int y1) {
     glBlitFramebuffer(x0, y0, x1, y1, x0, y0, x1, y1, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT,
                       GL_NEAREST);
   }
+  glBindFramebuffer(GL_FRAMEBUFFER, impl_->fbo(target_));
+}
+
+namespace {
+
+/// Copies the colour within a box (clamped to `width` x `height`) between two FBOs of the same
+/// size and format: the same rectangle on both sides, so Mesa copies memory.
+void copy_colour_box(GLuint from, GLuint to, int width, int height, int x0, int y0, int x1,
+                     int y1) {
+  x0 = std::clamp(x0, 0, width);
+  x1 = std::clamp(x1, x0, width);
+  y0 = std::clamp(y0, 0, height);
+  y1 = std::clamp(y1, y0, height);
+  if (x0 == x1 || y0 == y1) return;
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, from);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, to);
+  glBlitFramebuffer(x0, y0, x1, y1, x0, y0, x1, y1, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+}
+
+}  // namespace
+
+bool OffscreenContext::store_output_box(int x0, int y0, int x1, int y1) {
+  if (!impl_->output.fbo) return false;
+  make_current();
+  if (!impl_->panels.fbo) {
+    std::optional<Framebuffer> made = make_framebuffer(width_, height_, 1, /*with_depth=*/false);
+    if (!made) {
+      make_current();
+      return false;
+    }
+    impl_->panels = std::move(*made);
+  }
+  copy_colour_box(impl_->output.fbo.get(), impl_->panels.fbo.get(), width_, height_, x0, y0, x1,
+                  y1);
+  glBindFramebuffer(GL_FRAMEBUFFER, impl_->fbo(target_));
+  return true;
+}
+
+bool OffscreenContext::has_stored_output() const {
+  return impl_->panels.fbo && impl_->output.fbo;
+}
+
+void OffscreenContext::restore_output_box(int x0, int y0, int x1, int y1) {
+  if (!has_stored_output()) throw std::logic_error("offscreen context: no stored output boxes");
+  copy_colour_box(impl_->panels.fbo.get(), impl_->output.fbo.get(), width_, height_, x0, y0, x1,
+                  y1);
   glBindFramebuffer(GL_FRAMEBUFFER, impl_->fbo(target_));
 }
 

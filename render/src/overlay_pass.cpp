@@ -6,6 +6,7 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "backends/imgui_impl_opengl3.h"
 #include "overlay_plot.hpp"
 #include "render/camera_math.hpp"
+#include "render/offscreen_context.hpp"
 #include "render/overlay_layout.hpp"
 
 namespace tumble::render::detail {
@@ -46,7 +48,102 @@ float label_font_px(const Label& label, int width, int height) {
   return label.font_px > 0.0f ? label.font_px : overlay_font_px(width, height);
 }
 
+/// Appends the bytes of `count` objects at `data` to `key`.
+template <typename T>
+void append_bytes(std::vector<unsigned char>& key, const T* data, std::size_t count) {
+  const auto* bytes = reinterpret_cast<const unsigned char*>(data);
+  key.insert(key.end(), bytes, bytes + count * sizeof(T));
+}
+
+/// A window's decorations are its list's first command, drawn before its content (a list of
+/// one command has none).
+bool has_decorations(const ImDrawList& list) {
+  return list.CmdBuffer.Size >= 2 && list.CmdBuffer[0].UserCallback == nullptr;
+}
+
+bool overlap(const PixelBox& a, const PixelBox& b) {
+  return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+}
+
+/// Renders `data` with only the commands `keep(list, command)` accepts: the others' element
+/// counts are 0 for the call.
+template <typename Keep>
+void render_commands(ImDrawData& data, Keep keep) {
+  std::vector<unsigned int> counts;
+  for (int l = 0; l < data.CmdListsCount; ++l) {
+    for (int c = 0; c < data.CmdLists[l]->CmdBuffer.Size; ++c) {
+      ImDrawCmd& command = data.CmdLists[l]->CmdBuffer[c];
+      counts.push_back(command.ElemCount);
+      if (!keep(l, c)) command.ElemCount = 0;
+    }
+  }
+  ImGui_ImplOpenGL3_RenderDrawData(&data);
+  std::size_t i = 0;
+  for (int l = 0; l < data.CmdListsCount; ++l) {
+    for (ImDrawCmd& command : data.CmdLists[l]->CmdBuffer) command.ElemCount = counts[i++];
+  }
+}
+
+/// The box (GL's pixel coordinates, one pixel of margin) holding vertices `first`..`last` of
+/// `list`, in a `width` x `height` frame.
+PixelBox vertex_box(const ImDrawList& list, int first, int last, int width, int height) {
+  float x0 = FLT_MAX, y0 = FLT_MAX, x1 = -FLT_MAX, y1 = -FLT_MAX;
+  for (int v = first; v < last; ++v) {
+    const ImVec2& p = list.VtxBuffer[v].pos;
+    x0 = std::min(x0, p.x);
+    x1 = std::max(x1, p.x);
+    y0 = std::min(y0, p.y);
+    y1 = std::max(y1, p.y);
+  }
+  if (!(x0 <= x1 && y0 <= y1)) return PixelBox{};
+  const auto clamp = [](float v, int limit) {
+    return static_cast<int>(std::clamp(v, 0.0f, static_cast<float>(limit)));
+  };
+  return {clamp(std::floor(x0) - 1.0f, width),
+          clamp(static_cast<float>(height) - std::ceil(y1) - 1.0f, height),
+          clamp(std::ceil(x1) + 1.0f, width),
+          clamp(static_cast<float>(height) - std::floor(y0) + 1.0f, height)};
+}
+
 }  // namespace
+
+std::optional<std::vector<OverlayPass::Decorations>> OverlayPass::decorations(
+    const ImDrawData& data, int width, int height, const OverlayUnder& under) {
+  if (under.layers == 0 || !under.drawn || data.DisplayPos.x != 0.0f || data.DisplayPos.y != 0.0f) {
+    return std::nullopt;
+  }
+  std::vector<Decorations> found;
+  std::vector<PixelBox> lists;  // every list's box so far
+  for (int l = 0; l < data.CmdListsCount; ++l) {
+    const ImDrawList& list = *data.CmdLists[l];
+    const PixelBox whole = vertex_box(list, 0, list.VtxBuffer.Size, width, height);
+    if (has_decorations(list)) {
+      // Drawn before the earlier lists' rest: it must not overlap them.
+      for (const PixelBox& earlier : lists) {
+        if (overlap(whole, earlier)) return std::nullopt;
+      }
+      const ImDrawCmd& first = list.CmdBuffer[0];
+      const ImDrawIdx* indices = list.IdxBuffer.Data + first.IdxOffset;
+      const ImDrawIdx* end = indices + first.ElemCount;
+      const int last =
+          static_cast<int>(first.VtxOffset) +
+          (first.ElemCount > 0 ? static_cast<int>(*std::max_element(indices, end)) + 1 : 0);
+      Decorations decorations;
+      decorations.box = vertex_box(list, static_cast<int>(first.VtxOffset), last, width, height);
+      if (overlap(decorations.box, *under.drawn)) return std::nullopt;
+      append_bytes(decorations.key, list.VtxBuffer.Data + first.VtxOffset,
+                   static_cast<std::size_t>(last) - first.VtxOffset);
+      append_bytes(decorations.key, indices, first.ElemCount);
+      append_bytes(decorations.key, &first.ClipRect, 1);
+      append_bytes(decorations.key, &first.TextureId, 1);
+      const int size[2] = {width, height};
+      append_bytes(decorations.key, size, 2);
+      found.push_back(std::move(decorations));
+    }
+    lists.push_back(whole);
+  }
+  return found;
+}
 
 std::string OverlayPass::panel_id(const OverlayPanel& panel, int index) {
   // The size and form are part of the id: a panel drawn at a new size is laid out afresh.
@@ -75,6 +172,7 @@ void OverlayPass::ensure_fonts(const DrawList& frame, int width, int height) {
     added = true;
   }
   if (!added) return;
+  stored_.clear();  // the atlas's texture may come back under the same name
   ImGui_ImplOpenGL3_DestroyFontsTexture();
   ImGui_ImplOpenGL3_CreateFontsTexture();
 }
@@ -173,8 +271,7 @@ void OverlayPass::draw_labels(const DrawList& frame, int width, int height) {
   }
 }
 
-void OverlayPass::draw(const DrawList& frame, int width, int height) {
-  ContextGuard guard(context_);
+void OverlayPass::lay_out(const DrawList& frame, int width, int height) {
   ensure_fonts(frame, width, height);
   // ImGui sizes an auto-fitting window one frame after it first appears: lay out a hidden
   // frame first whenever a panel is new, so that its first image already shows it.
@@ -184,7 +281,44 @@ void OverlayPass::draw(const DrawList& frame, int width, int height) {
   }
   if (new_panel) build(frame, width, height);
   build(frame, width, height);
+}
+
+void OverlayPass::draw(const DrawList& frame, int width, int height) {
+  ContextGuard guard(context_);
+  lay_out(frame, width, height);
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+void OverlayPass::draw(const DrawList& frame, int width, int height, OffscreenContext& context,
+                       const OverlayUnder& under) {
+  ContextGuard guard(context_);
+  lay_out(frame, width, height);
+  ImDrawData& data = *ImGui::GetDrawData();
+  std::optional<std::vector<Decorations>> now = decorations(data, width, height, under);
+  if (!now || now->empty()) {
+    stored_.clear();
+    ImGui_ImplOpenGL3_RenderDrawData(&data);
+    return;
+  }
+  const auto decoration = [&](int l, int c) {
+    return c == 0 && has_decorations(*data.CmdLists[l]);
+  };
+  const auto same = [](const Decorations& a, const Decorations& b) { return a.key == b.key; };
+  const bool reuse = under.layers == stored_layers_ && context.has_stored_output() &&
+                     std::equal(now->begin(), now->end(), stored_.begin(), stored_.end(), same);
+  if (reuse) {
+    for (const Decorations& d : *now)
+      context.restore_output_box(d.box.x0, d.box.y0, d.box.x1, d.box.y1);
+  } else {
+    render_commands(data, decoration);
+    bool stored = true;
+    for (const Decorations& d : *now) {
+      stored = stored && context.store_output_box(d.box.x0, d.box.y0, d.box.x1, d.box.y1);
+    }
+    stored_ = stored ? std::move(*now) : std::vector<Decorations>{};
+    stored_layers_ = under.layers;
+  }
+  render_commands(data, [&](int l, int c) { return !decoration(l, c); });
 }
 
 }  // namespace tumble::render::detail

@@ -87,7 +87,14 @@ void Renderer::render(const DrawList& frame, Image& out, const ExtraPass& extra)
   }
   if (frame.has_overlays()) {
     if (!impl_->overlay) impl_->overlay = std::make_unique<detail::OverlayPass>();
-    impl_->overlay->draw(frame, context.width(), context.height());
+    if (impl_->fxaa && impl_->filter_drawn_region) {
+      // The output holds the stored layers outside the scene's drawn box (the filter keeps to
+      // it), so the panels' decorations may be stored over them.
+      impl_->overlay->draw(frame, context.width(), context.height(), context,
+                           {impl_->scene->started_from_layers(), impl_->scene->drawn_box()});
+    } else {
+      impl_->overlay->draw(frame, context.width(), context.height());
+    }
   }
   if (extra.before != nullptr) {
     context.read_pixels(*extra.before);

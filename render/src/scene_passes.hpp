@@ -3,6 +3,7 @@
 // meshes and arrows (opaque, then translucent back to front), polylines and points.
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -41,6 +42,10 @@ class ScenePasses {
   /// Says that something other than draw() drew into the scene FBO after the last draw() (the
   /// overlay, without a post-process): the next frame restores all of the stored layers.
   void drawn_over() { written_.reset(); }
+
+  /// Non-zero when the last draw() started from the stored layers: their generation (a new one
+  /// each time they are stored), so that equal values mean the same pixels outside drawn_box().
+  std::uint64_t started_from_layers() const { return frame_layers_; }
 
   /// Triangles drawn into the image by the last draw() (shadow pass not counted).
   std::size_t last_frame_triangles() const { return triangles_; }
@@ -120,6 +125,8 @@ class ScenePasses {
   /// Where the scene FBO holds anything but the stored layers (outside it, it holds them):
   /// the last frame's drawn box, when it started from them. Empty: unknown, restore them all.
   std::optional<PixelBox> written_;
+  std::uint64_t layers_generation_ = 0;  // stores so far
+  std::uint64_t frame_layers_ = 0;       // started_from_layers()
 };
 
 }  // namespace tumble::render::detail

@@ -31,6 +31,10 @@ void append_static_key(std::vector<float>& key, const Rgba& c) {
 bool ScenePasses::static_layers(const DrawList& frame, const GroundPlacement& ground,
                                 OffscreenContext& context) {
   const SceneStyle& style = frame.style;
+  // Where the last frame drew over the layers (if it started from them); until this frame
+  // does, nothing is known.
+  const std::optional<PixelBox> written = std::exchange(written_, std::nullopt);
+  frame_layers_ = 0;
   // A ground shadowed all over (a grazing light) changes with every frame.
   if (!reuse_static_layers_ || (style.ground && shadow_valid_ && !ground.patch)) return false;
 
@@ -52,7 +56,7 @@ bool ScenePasses::static_layers(const DrawList& frame, const GroundPlacement& gr
     append_static_key(static_key_, style.key_light_from);
     append_static_key(static_key_, style.ground_colour);
   }
-  const std::optional<PixelBox> written = std::exchange(written_, std::nullopt);
+
   if (static_key_ == stored_static_key_ && context.has_stored_scene()) {
     if (written && !style.ground) {
       // Only the last frame's drawn box differs from the stored layers, in colour and depth
@@ -62,6 +66,7 @@ bool ScenePasses::static_layers(const DrawList& frame, const GroundPlacement& gr
       context.restore_scene(/*depth=*/style.ground);  // the background writes no depth
     }
     written_ = drawn_;
+    frame_layers_ = layers_generation_;
     return true;
   }
   // Stored only when a frame repeats the last one's key: a camera that moves every frame would
@@ -80,6 +85,7 @@ bool ScenePasses::static_layers(const DrawList& frame, const GroundPlacement& gr
   }
   stored_static_key_ = static_key_;
   written_ = drawn_;
+  frame_layers_ = ++layers_generation_;
   return true;
 }
 

@@ -67,6 +67,17 @@ class OffscreenContext {
   /// stored copy was last restored or made.
   void restore_scene_box(int x0, int y0, int x1, int y1);
 
+  /// Copies the output FBO's colour within [x0, x1) x [y0, y1) (GL's pixel coordinates) into
+  /// a stored copy of the output's size, made on the first call (the overlay's panels drawn
+  /// over the stored layers). False, nothing stored, without a post-process or when that copy
+  /// cannot be made. Leaves the target bound.
+  bool store_output_box(int x0, int y0, int x1, int y1);
+  /// True when store_output_box() stored a copy since the framebuffers were last made.
+  bool has_stored_output() const;
+  /// Copies that box back from the stored copy into the output FBO. Throws std::logic_error
+  /// when nothing is stored.
+  void restore_output_box(int x0, int y0, int x1, int y1);
+
   int width() const { return width_; }
   int height() const { return height_; }
   /// Samples per pixel actually used (after clamping to GL_MAX_SAMPLES and completeness).
