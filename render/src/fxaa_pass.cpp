@@ -20,7 +20,8 @@ FxaaPass::FxaaPass(int width, int height)
   glBindVertexArray(0);
 }
 
-void FxaaPass::apply(OffscreenContext& context, const std::optional<PixelBox>& drawn) {
+void FxaaPass::apply(OffscreenContext& context, const std::optional<PixelBox>& drawn,
+                     const std::vector<PixelBox>* copied) {
   // The scene as drawn (bottom-up rows: the blocks are found in GL's own coordinates), within
   // the box where anything was drawn; its corner is on the blocks' grid.
   const PixelBox box = drawn.value_or(PixelBox{0, 0, width_, height_});
@@ -48,7 +49,13 @@ void FxaaPass::apply(OffscreenContext& context, const std::optional<PixelBox>& d
     edge_blocks_ += run.count;
   }
 
-  context.copy_scene_to_output();  // what the filter leaves alone (it discards flat pixels)
+  // What the filter leaves alone (it discards flat pixels).
+  if (copied != nullptr) {
+    for (const PixelBox& part : *copied)
+      context.copy_scene_box_to_output(part.x0, part.y0, part.x1, part.y1);
+  } else {
+    context.copy_scene_to_output();
+  }
   context.set_target(OffscreenContext::Target::output);
   context.make_current();
   if (corners_.empty()) return;

@@ -32,7 +32,10 @@ class FxaaPass {
   /// and writes the filtered image into its output framebuffer, which stays the target of later
   /// draws (the overlay) and of the read-back. With `drawn`, only that box is read back and
   /// scanned (outside it the scene is the flat background, which the filter leaves alone).
-  void apply(OffscreenContext& context, const std::optional<PixelBox>& drawn = std::nullopt);
+  /// `copied`: the output already equals the scene outside these boxes (the last frame's
+  /// drawn boxes over the same stored layers), so only they are copied; empty: the whole frame.
+  void apply(OffscreenContext& context, const std::optional<PixelBox>& drawn = std::nullopt,
+             const std::vector<PixelBox>* copied = nullptr);
 
   /// Edge blocks the last frame filtered.
   int last_edge_blocks() const { return edge_blocks_; }

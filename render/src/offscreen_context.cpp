@@ -296,6 +296,13 @@ void copy_colour_box(GLuint from, GLuint to, int width, int height, int x0, int 
 
 }  // namespace
 
+void OffscreenContext::copy_scene_box_to_output(int x0, int y0, int x1, int y1) {
+  if (!impl_->output.fbo) return;
+  make_current();
+  copy_colour_box(impl_->draw.fbo.get(), impl_->output.fbo.get(), width_, height_, x0, y0, x1, y1);
+  glBindFramebuffer(GL_FRAMEBUFFER, impl_->fbo(target_));
+}
+
 bool OffscreenContext::store_output_box(int x0, int y0, int x1, int y1) {
   if (!impl_->output.fbo) return false;
   make_current();

@@ -50,6 +50,8 @@ class OverlayPass {
   /// is the same pixel for pixel (tests/render/static_layers_test.cpp).
   void draw(const DrawList& frame, int width, int height, OffscreenContext& context,
             const OverlayUnder& under);
+  /// Where the last draw drew (GL's pixel coordinates, a pixel of margin).
+  const PixelBox& last_box() const { return last_box_; }
 
  private:
   void build(const DrawList& frame, int width, int height);
@@ -78,6 +80,7 @@ class OverlayPass {
   std::unordered_set<std::string> known_panels_;  // ImGui window ids laid out so far
   std::vector<Decorations> stored_;               // held by the context's stored output boxes
   std::uint64_t stored_layers_ = 0;               // over these static layers
+  PixelBox last_box_;                             // last_box()
 };
 
 }  // namespace tumble::render::detail

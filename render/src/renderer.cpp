@@ -27,6 +27,11 @@ struct Renderer::Impl {
   std::unique_ptr<detail::ScenePasses> scene;
   std::unique_ptr<detail::FxaaPass> fxaa;        // when the context has a post-process
   std::unique_ptr<detail::OverlayPass> overlay;  // created by the first frame with text
+  /// The output holds the stored layers of this generation (0: not known to) outside the
+  /// boxes `written`, where the last frame drew (its scene's drawn box and its overlay).
+  std::uint64_t output_layers = 0;
+  std::vector<detail::PixelBox> written;
+  std::vector<detail::PixelBox> copied;  // this frame's boxes to copy from the scene
 };
 
 Renderer::Renderer(const RendererOptions& options) : impl_(std::make_unique<Impl>(options)) {
@@ -81,26 +86,40 @@ void Renderer::render(const DrawList& frame, Image& out, const ExtraPass& extra)
   context.make_current();
   impl_->scene->draw(frame, impl_->meshes, context);
   // Later draws and the read-back: the output.
+  const std::uint64_t layers = impl_->filter_drawn_region ? impl_->scene->started_from_layers() : 0;
+  const std::optional<detail::PixelBox>& drawn = impl_->scene->drawn_box();
   if (impl_->fxaa) {
-    impl_->fxaa->apply(context,
-                       impl_->filter_drawn_region ? impl_->scene->drawn_box() : std::nullopt);
+    // Where the output differs from this frame's scene: the last frame's drawn boxes and this
+    // one's, when both drew over the same stored layers; else anywhere.
+    const bool partial = layers != 0 && drawn && layers == impl_->output_layers;
+    if (partial) {
+      impl_->copied = impl_->written;
+      impl_->copied.push_back(*drawn);
+    }
+    impl_->fxaa->apply(context, impl_->filter_drawn_region ? drawn : std::nullopt,
+                       partial ? &impl_->copied : nullptr);
+    impl_->output_layers = drawn ? layers : 0;
+    impl_->written.assign(1, drawn.value_or(detail::PixelBox{}));
   }
   if (frame.has_overlays()) {
     if (!impl_->overlay) impl_->overlay = std::make_unique<detail::OverlayPass>();
     if (impl_->fxaa && impl_->filter_drawn_region) {
       // The output holds the stored layers outside the scene's drawn box (the filter keeps to
       // it), so the panels' decorations may be stored over them.
-      impl_->overlay->draw(frame, context.width(), context.height(), context,
-                           {impl_->scene->started_from_layers(), impl_->scene->drawn_box()});
+      impl_->overlay->draw(frame, context.width(), context.height(), context, {layers, drawn});
     } else {
       impl_->overlay->draw(frame, context.width(), context.height());
     }
+    impl_->written.push_back(impl_->overlay->last_box());
   }
   if (extra.before != nullptr) {
     context.read_pixels(*extra.before);
     context.make_current();  // the readback may have bound the resolve target
   }
-  if (extra.draw) extra.draw(context.width(), context.height());
+  if (extra.draw) {
+    extra.draw(context.width(), context.height());
+    impl_->output_layers = 0;  // drawn anywhere
+  }
   // Without a post-process, the overlay and the extra pass drew into the scene's framebuffer.
   if (!impl_->fxaa && (frame.has_overlays() || extra.draw)) impl_->scene->drawn_over();
   context.read_pixels(out);
@@ -117,6 +136,7 @@ void Renderer::resize(int width, int height) {
   const int old_width = context.width();
   const int old_height = context.height();
   context.resize(width, height);  // checks the size; keeps the old one when it throws
+  impl_->output_layers = 0;
   if (!impl_->fxaa) return;
   try {
     impl_->fxaa = std::make_unique<detail::FxaaPass>(width, height);

@@ -51,6 +51,8 @@ class OffscreenContext {
   /// Copies the scene FBO's colour into the output FBO (same size and format: a plain copy);
   /// leaves the target's FBO bound. Nothing without a post-process.
   void copy_scene_to_output();
+  /// The same within [x0, x1) x [y0, y1) (GL's pixel coordinates) only.
+  void copy_scene_box_to_output(int x0, int y0, int x1, int y1);
 
   /// Stores a copy of the scene FBO's colour and depth (the layers that stay from frame to
   /// frame: background, ground), in an FBO of the same size, samples and formats made on the
