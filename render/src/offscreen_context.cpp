@@ -227,12 +227,7 @@ bool OffscreenContext::has_post_process() const {
 }
 
 void OffscreenContext::copy_scene_to_output() {
-  if (!impl_->output.fbo) return;
-  make_current();
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, impl_->draw.fbo.get());
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, impl_->output.fbo.get());
-  glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-  glBindFramebuffer(GL_FRAMEBUFFER, impl_->fbo(target_));
+  copy_scene_box_to_output(0, 0, width_, height_);
 }
 
 bool OffscreenContext::store_scene() {
@@ -260,30 +255,13 @@ void OffscreenContext::restore_scene(bool depth) {
   if (!depth) glClear(GL_DEPTH_BUFFER_BIT);  // llvmpipe marks its tiles cleared: no memory pass
 }
 
-void OffscreenContext::restore_scene_box(int x0, int y0, int x1, int y1) {
-  if (!impl_->layers.fbo) throw std::logic_error("offscreen context: no stored scene to restore");
-  x0 = std::clamp(x0, 0, width_);
-  x1 = std::clamp(x1, x0, width_);
-  y0 = std::clamp(y0, 0, height_);
-  y1 = std::clamp(y1, y0, height_);
-  // The same rectangle on both sides and no scissor: Mesa still copies memory (a scissored
-  // blit would run a shader instead). Copying the depth too costs less than clearing it: a
-  // clear reaches every tile of the frame.
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, impl_->layers.fbo.get());
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, impl_->draw.fbo.get());
-  if (x0 < x1 && y0 < y1) {
-    glBlitFramebuffer(x0, y0, x1, y1, x0, y0, x1, y1, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT,
-                      GL_NEAREST);
-  }
-  glBindFramebuffer(GL_FRAMEBUFFER, impl_->fbo(target_));
-}
-
 namespace {
 
-/// Copies the colour within a box (clamped to `width` x `height`) between two FBOs of the same
-/// size and format: the same rectangle on both sides, so Mesa copies memory.
-void copy_colour_box(GLuint from, GLuint to, int width, int height, int x0, int y0, int x1,
-                     int y1) {
+/// Copies `buffers` within a box (clamped to `width` x `height`) between two FBOs of the same
+/// size, samples and formats: the same rectangle on both sides and no scissor, so Mesa copies
+/// memory (a scissored blit would run a shader instead).
+void copy_box(GLuint from, GLuint to, GLbitfield buffers, int width, int height, int x0, int y0,
+              int x1, int y1) {
   x0 = std::clamp(x0, 0, width);
   x1 = std::clamp(x1, x0, width);
   y0 = std::clamp(y0, 0, height);
@@ -291,15 +269,24 @@ void copy_colour_box(GLuint from, GLuint to, int width, int height, int x0, int 
   if (x0 == x1 || y0 == y1) return;
   glBindFramebuffer(GL_READ_FRAMEBUFFER, from);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, to);
-  glBlitFramebuffer(x0, y0, x1, y1, x0, y0, x1, y1, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBlitFramebuffer(x0, y0, x1, y1, x0, y0, x1, y1, buffers, GL_NEAREST);
 }
 
 }  // namespace
 
+void OffscreenContext::restore_scene_box(int x0, int y0, int x1, int y1) {
+  if (!impl_->layers.fbo) throw std::logic_error("offscreen context: no stored scene to restore");
+  // Copying the depth too costs less than clearing it: a clear reaches every tile of the frame.
+  copy_box(impl_->layers.fbo.get(), impl_->draw.fbo.get(),
+           GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, width_, height_, x0, y0, x1, y1);
+  glBindFramebuffer(GL_FRAMEBUFFER, impl_->fbo(target_));
+}
+
 void OffscreenContext::copy_scene_box_to_output(int x0, int y0, int x1, int y1) {
   if (!impl_->output.fbo) return;
   make_current();
-  copy_colour_box(impl_->draw.fbo.get(), impl_->output.fbo.get(), width_, height_, x0, y0, x1, y1);
+  copy_box(impl_->draw.fbo.get(), impl_->output.fbo.get(), GL_COLOR_BUFFER_BIT, width_, height_, x0,
+           y0, x1, y1);
   glBindFramebuffer(GL_FRAMEBUFFER, impl_->fbo(target_));
 }
 
@@ -314,8 +301,8 @@ bool OffscreenContext::store_output_box(int x0, int y0, int x1, int y1) {
     }
     impl_->panels = std::move(*made);
   }
-  copy_colour_box(impl_->output.fbo.get(), impl_->panels.fbo.get(), width_, height_, x0, y0, x1,
-                  y1);
+  copy_box(impl_->output.fbo.get(), impl_->panels.fbo.get(), GL_COLOR_BUFFER_BIT, width_, height_,
+           x0, y0, x1, y1);
   glBindFramebuffer(GL_FRAMEBUFFER, impl_->fbo(target_));
   return true;
 }
@@ -326,18 +313,15 @@ bool OffscreenContext::has_stored_output() const {
 
 void OffscreenContext::restore_output_box(int x0, int y0, int x1, int y1) {
   if (!has_stored_output()) throw std::logic_error("offscreen context: no stored output boxes");
-  copy_colour_box(impl_->panels.fbo.get(), impl_->output.fbo.get(), width_, height_, x0, y0, x1,
-                  y1);
+  copy_box(impl_->panels.fbo.get(), impl_->output.fbo.get(), GL_COLOR_BUFFER_BIT, width_, height_,
+           x0, y0, x1, y1);
   glBindFramebuffer(GL_FRAMEBUFFER, impl_->fbo(target_));
 }
 
 void OffscreenContext::copy_colour_and_depth(unsigned int from, unsigned int to, bool depth) {
-  // Same size, samples and formats: Mesa copies the memory (no shader runs), and the depth
-  // values arrive bit for bit.
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, from);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, to);
-  glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_,
-                    GL_COLOR_BUFFER_BIT | (depth ? GL_DEPTH_BUFFER_BIT : 0), GL_NEAREST);
+  // The depth values arrive bit for bit.
+  copy_box(from, to, GL_COLOR_BUFFER_BIT | (depth ? GL_DEPTH_BUFFER_BIT : 0), width_, height_, 0, 0,
+           width_, height_);
   glBindFramebuffer(GL_FRAMEBUFFER, impl_->fbo(target_));
 }
 
