@@ -13,8 +13,10 @@
 #include <string>
 
 #include "base/errors.hpp"
+#include "engine/geometry/mesh_topology.hpp"
 #include "engine/geometry/primitive_meshes.hpp"
 #include "engine/mesh_fixtures.hpp"
+#include "engine/overlap/part_overlap.hpp"
 #include "inertia_expectations.hpp"
 #include "rational_reference.hpp"
 #include "support/input_error.hpp"
@@ -281,6 +283,39 @@ TEST(MeshChecks, UnweldedVerticesAreWelded) {
   EXPECT_TRUE(report.watertight);
   EXPECT_THAT(report.warnings, IsEmpty());
   expect_inertia_near(report.mass_properties.inertia, box_inertia(1.0, size));
+}
+
+TEST(MeshChecks, LargeMeshSelfIntersectionCountedAsTheGridAloneCountsIt) {
+  // 250,000 faces: the size at which the analysis finds the topology on two threads and the
+  // overlap checks certify coarse regions whole. A patch of the tube's outer wall pushed in
+  // through its inner wall must be refused with as many crossing pairs as the fine grid and
+  // filter alone (no regions) find; the untouched torus passes.
+  TriangleMesh torus = torus_mesh(1.0, 0.3, 500, 250);
+  ASSERT_GE(torus.triangles.size(), 200'000u);
+  const MeshReport clean = analyze_mesh(torus, with_density(1.0), "torus.stl");
+  EXPECT_THAT(clean.warnings, IsEmpty());
+  for (Eigen::Vector3d& p : torus.positions) {
+    if (p.x() > 1.25 && std::abs(p.y()) < 0.05) p.x() -= 0.7;
+  }
+  const Topology topology = analyze_topology(torus);
+  // The regions are usable and certify most cells, not those of the crossing.
+  const detail::PartOverlaps certified =
+      detail::find_part_overlaps(torus, topology.triangle_part, topology.parts);
+  EXPECT_GT(certified.stats.certified, certified.stats.regions / 2);
+  EXPECT_LT(certified.stats.certified, certified.stats.regions);
+  detail::OverlapOptions grid_only;
+  grid_only.method = detail::FacePairMethod::kFiltered;
+  const detail::PartOverlaps expected =
+      detail::find_part_overlaps(torus, topology.triangle_part, topology.parts, grid_only);
+  ASSERT_EQ(expected.findings.size(), 1u);
+  ASSERT_GT(expected.findings[0].face_pairs, 0u);
+  EXPECT_THAT(error_of(torus, with_density(1.0), "tangled.stl"),
+              HasSubstr("tangled.stl: part 1 of 1 intersects itself (" +
+                        std::to_string(expected.findings[0].face_pairs) + " pairs of faces"));
+  // Without the checks the crossing goes unnoticed (nothing certified, nothing found).
+  MassOptions unchecked = with_density(1.0);
+  unchecked.check_overlap = false;
+  EXPECT_THAT(analyze_mesh(torus, unchecked, "tangled.stl").warnings, IsEmpty());
 }
 
 TEST(MeshChecks, DisjointPartsAreSummed) {
