@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <utility>
 
 namespace tumble::render::detail {
 
@@ -133,6 +134,43 @@ void find_edge_blocks(const std::uint8_t* rgba, int width, int height,
     return a.row != b.row ? a.row < b.row : a.first < b.first;
   });
   runs.swap(fine);
+}
+
+std::vector<PixelBox> disjoint_cover(const std::vector<PixelBox>& boxes) {
+  std::vector<int> edges;
+  for (const PixelBox& box : boxes) {
+    if (box.x0 < box.x1 && box.y0 < box.y1) edges.insert(edges.end(), {box.y0, box.y1});
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  std::vector<PixelBox> out;
+  std::vector<std::pair<int, int>> spans, open_spans;  // this band's; those of `open`
+  std::size_t open = 0;  // out[open..] are the rectangles still growing upward
+  for (std::size_t band = 0; band + 1 < edges.size(); ++band) {
+    const int y0 = edges[band], y1 = edges[band + 1];
+    spans.clear();
+    for (const PixelBox& box : boxes) {
+      if (box.x0 < box.x1 && box.y0 <= y0 && y1 <= box.y1) spans.emplace_back(box.x0, box.x1);
+    }
+    std::sort(spans.begin(), spans.end());
+    std::size_t merged = 0;
+    for (const auto& span : spans) {
+      if (merged > 0 && span.first <= spans[merged - 1].second) {
+        spans[merged - 1].second = std::max(spans[merged - 1].second, span.second);
+      } else {
+        spans[merged++] = span;
+      }
+    }
+    spans.resize(merged);
+    if (!spans.empty() && spans == open_spans && out.back().y1 == y0) {
+      for (std::size_t i = open; i < out.size(); ++i) out[i].y1 = y1;
+      continue;
+    }
+    open = out.size();
+    for (const auto& [x0, x1] : spans) out.push_back({x0, y0, x1, y1});
+    open_spans = spans;
+  }
+  return out;
 }
 
 }  // namespace tumble::render::detail

@@ -36,4 +36,10 @@ struct PixelBox {
   int y1 = 0;
 };
 
+/// Rectangles that cover exactly the union of `boxes` and do not overlap (empty boxes add
+/// nothing): horizontal bands between the boxes' edges, each band's merged spans, and a band
+/// joined to the one below while their spans are the same. For copies of a union of boxes,
+/// each pixel once (the output copy's boxes, the last frame's and this one's, mostly overlap).
+std::vector<PixelBox> disjoint_cover(const std::vector<PixelBox>& boxes);
+
 }  // namespace tumble::render::detail

@@ -90,11 +90,13 @@ void Renderer::render(const DrawList& frame, Image& out, const ExtraPass& extra)
   const std::optional<detail::PixelBox>& drawn = impl_->scene->drawn_box();
   if (impl_->fxaa) {
     // Where the output differs from this frame's scene: the last frame's drawn boxes and this
-    // one's, when both drew over the same stored layers; else anywhere.
+    // one's, when both drew over the same stored layers; else anywhere. As rectangles that do
+    // not overlap: the boxes overlap mostly (the default demo's three held 949,000 pixels, more
+    // than the frame's 921,600), and a pixel copied twice is copied for nothing.
     const bool partial = layers != 0 && drawn && layers == impl_->output_layers;
     if (partial) {
-      impl_->copied = impl_->written;
-      impl_->copied.push_back(*drawn);
+      impl_->written.push_back(*drawn);
+      impl_->copied = detail::disjoint_cover(impl_->written);
     }
     impl_->fxaa->apply(context, impl_->filter_drawn_region ? drawn : std::nullopt,
                        partial ? &impl_->copied : nullptr);

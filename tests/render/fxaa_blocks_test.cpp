@@ -112,5 +112,60 @@ TEST(FxaaBlocks, OneVerticalEdgeGivesOneBlockARow) {
   }
 }
 
+/// Per pixel of a 64x48 grid: how many of `boxes` cover it.
+std::vector<int> cover_counts(const std::vector<PixelBox>& boxes) {
+  std::vector<int> counts(64 * 48, 0);
+  for (const PixelBox& box : boxes) {
+    for (int y = std::max(0, box.y0); y < std::min(48, box.y1); ++y) {
+      for (int x = std::max(0, box.x0); x < std::min(64, box.x1); ++x) ++counts[y * 64 + x];
+    }
+  }
+  return counts;
+}
+
+TEST(DisjointCover, CoversTheUnionOncePerPixel) {
+  // Random boxes (some empty, some repeated, nested or touching) on a small grid against a
+  // pixel count: the cover holds every pixel of the union exactly once and nothing else.
+  std::mt19937 random(31);
+  std::uniform_int_distribution<int> coordinate(0, 64), count(0, 5);
+  for (int trial = 0; trial < 500; ++trial) {
+    std::vector<PixelBox> boxes(static_cast<std::size_t>(count(random)));
+    for (PixelBox& box : boxes) {
+      const int a = coordinate(random), b = coordinate(random);
+      const int c = coordinate(random) * 3 / 4, d = coordinate(random) * 3 / 4;
+      box = {std::min(a, b), std::min(c, d), std::max(a, b), std::max(c, d)};
+    }
+    if (trial % 7 == 0 && !boxes.empty()) boxes.push_back(boxes.front());
+    const std::vector<PixelBox> cover = disjoint_cover(boxes);
+    const std::vector<int> wanted = cover_counts(boxes), got = cover_counts(cover);
+    for (std::size_t pixel = 0; pixel < wanted.size(); ++pixel) {
+      ASSERT_EQ(got[pixel], wanted[pixel] > 0 ? 1 : 0) << "trial " << trial << " pixel " << pixel;
+    }
+    for (const PixelBox& box : cover) {
+      EXPECT_LT(box.x0, box.x1);
+      EXPECT_LT(box.y0, box.y1);
+    }
+  }
+}
+
+TEST(DisjointCover, OverlappingFramesBoxesBecomeFewRectangles) {
+  // A box, the same box again and one inside it: the box alone.
+  const PixelBox box{8, 16, 200, 120};
+  const std::vector<PixelBox> same = disjoint_cover({box, box, {20, 30, 40, 50}});
+  ASSERT_EQ(same.size(), 1u);
+  EXPECT_EQ(same[0].x0, 8);
+  EXPECT_EQ(same[0].y1, 120);
+  // The last frame's box and this one's, shifted by 8 pixels each way: three rectangles (the
+  // band below, the shared band, the band above) holding the union, 192 x 104 twice less the
+  // 184 x 96 both cover, each pixel once.
+  const std::vector<PixelBox> shifted = disjoint_cover({box, {16, 24, 208, 128}});
+  EXPECT_EQ(shifted.size(), 3u);
+  long area = 0;
+  for (const PixelBox& b : shifted) area += long{b.x1 - b.x0} * (b.y1 - b.y0);
+  EXPECT_EQ(area, 192L * 104 + 192L * 104 - 184L * 96);
+  EXPECT_TRUE(disjoint_cover({}).empty());
+  EXPECT_TRUE(disjoint_cover({{5, 5, 5, 9}, {3, 7, 9, 7}}).empty());
+}
+
 }  // namespace
 }  // namespace tumble::render::detail
