@@ -106,16 +106,14 @@ PixelBox vertex_box(const ImDrawList& list, int first, int last, int width, int 
 }
 
 /// The box of every vertex of `data`.
-PixelBox draw_data_box(const ImDrawData& data, int width, int height) {
-  PixelBox all{width, height, 0, 0};
+std::vector<PixelBox> draw_data_boxes(const ImDrawData& data, int width, int height) {
+  std::vector<PixelBox> boxes;
   for (int l = 0; l < data.CmdListsCount; ++l) {
     const ImDrawList& list = *data.CmdLists[l];
     const PixelBox box = vertex_box(list, 0, list.VtxBuffer.Size, width, height);
-    if (box.x0 >= box.x1 || box.y0 >= box.y1) continue;
-    all = {std::min(all.x0, box.x0), std::min(all.y0, box.y0), std::max(all.x1, box.x1),
-           std::max(all.y1, box.y1)};
+    if (box.x0 < box.x1 && box.y0 < box.y1) boxes.push_back(box);
   }
-  return all.x0 < all.x1 ? all : PixelBox{};
+  return boxes;
 }
 
 }  // namespace
@@ -299,7 +297,7 @@ void OverlayPass::lay_out(const DrawList& frame, int width, int height) {
 void OverlayPass::draw(const DrawList& frame, int width, int height) {
   ContextGuard guard(context_);
   lay_out(frame, width, height);
-  last_box_ = draw_data_box(*ImGui::GetDrawData(), width, height);
+  last_boxes_ = draw_data_boxes(*ImGui::GetDrawData(), width, height);
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 }
 
@@ -308,7 +306,7 @@ void OverlayPass::draw(const DrawList& frame, int width, int height, OffscreenCo
   ContextGuard guard(context_);
   lay_out(frame, width, height);
   ImDrawData& data = *ImGui::GetDrawData();
-  last_box_ = draw_data_box(data, width, height);
+  last_boxes_ = draw_data_boxes(data, width, height);
   std::optional<std::vector<Decorations>> now = decorations(data, width, height, under);
   if (!now || now->empty()) {
     stored_.clear();

@@ -50,8 +50,10 @@ class OverlayPass {
   /// is the same pixel for pixel (tests/render/static_layers_test.cpp).
   void draw(const DrawList& frame, int width, int height, OffscreenContext& context,
             const OverlayUnder& under);
-  /// Where the last draw drew (GL's pixel coordinates, a pixel of margin).
-  const PixelBox& last_box() const { return last_box_; }
+  /// Where the last draw drew: a box per window (GL's pixel coordinates, a pixel of margin).
+  /// Not one box round them all: on the default demo, its panel and a small window far apart
+  /// spanned 346,000 pixels, and the two boxes hold 75,000.
+  const std::vector<PixelBox>& last_boxes() const { return last_boxes_; }
 
  private:
   void build(const DrawList& frame, int width, int height);
@@ -80,7 +82,7 @@ class OverlayPass {
   std::unordered_set<std::string> known_panels_;  // ImGui window ids laid out so far
   std::vector<Decorations> stored_;               // held by the context's stored output boxes
   std::uint64_t stored_layers_ = 0;               // over these static layers
-  PixelBox last_box_;                             // last_box()
+  std::vector<PixelBox> last_boxes_;              // last_boxes()
 };
 
 }  // namespace tumble::render::detail

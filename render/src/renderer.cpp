@@ -112,7 +112,8 @@ void Renderer::render(const DrawList& frame, Image& out, const ExtraPass& extra)
     } else {
       impl_->overlay->draw(frame, context.width(), context.height());
     }
-    impl_->written.push_back(impl_->overlay->last_box());
+    const std::vector<detail::PixelBox>& boxes = impl_->overlay->last_boxes();
+    impl_->written.insert(impl_->written.end(), boxes.begin(), boxes.end());
   }
   if (extra.before != nullptr) {
     context.read_pixels(*extra.before);
