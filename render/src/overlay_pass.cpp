@@ -105,7 +105,7 @@ PixelBox vertex_box(const ImDrawList& list, int first, int last, int width, int 
           clamp(static_cast<float>(height) - std::floor(y0) + 1.0f, height)};
 }
 
-/// The box of every vertex of `data`.
+/// Each draw list's box (of its vertices), the empty ones left out.
 std::vector<PixelBox> draw_data_boxes(const ImDrawData& data, int width, int height) {
   std::vector<PixelBox> boxes;
   for (int l = 0; l < data.CmdListsCount; ++l) {

@@ -50,7 +50,8 @@ class OverlayPass {
   /// is the same pixel for pixel (tests/render/static_layers_test.cpp).
   void draw(const DrawList& frame, int width, int height, OffscreenContext& context,
             const OverlayUnder& under);
-  /// Where the last draw drew: a box per window (GL's pixel coordinates, a pixel of margin).
+  /// Where the last draw drew: a box per ImGui draw list, that is per window (GL's pixel
+  /// coordinates, a pixel of margin).
   /// Not one box round them all: on the default demo, its panel and a small window far apart
   /// spanned 346,000 pixels, and the two boxes hold 75,000.
   const std::vector<PixelBox>& last_boxes() const { return last_boxes_; }
