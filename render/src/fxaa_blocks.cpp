@@ -162,7 +162,7 @@ std::vector<PixelBox> disjoint_cover(const std::vector<PixelBox>& boxes) {
       }
     }
     spans.resize(merged);
-    if (!spans.empty() && spans == open_spans && out.back().y1 == y0) {
+    if (!spans.empty() && spans == open_spans) {  // the band below holds the same spans
       for (std::size_t i = open; i < out.size(); ++i) out[i].y1 = y1;
       continue;
     }

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Issue 27's render-side ratios on the default demo (assets/scenes/t_handle_flip.json, 481 frames
 # at 1280x720, FXAA and overlay): in each of ROUNDS rounds, run in turn,
-#  - ffmpeg alone, encoding the exact stream the MP4 sink pipes (dumped once through a PATH shim
-#    `ffmpeg` that is `cat > FILE`), with the sink's arguments;
+#  - ffmpeg alone, encoding the exact stream the MP4 sink pipes, with the sink's own arguments
+#    (both dumped once through a PATH shim `ffmpeg` that saves its arguments and `cat > FILE`);
 #  - `tumble render` end to end into an MP4;
 #  - the render side alone: the same command with ffmpeg replaced by `cat > /dev/null`;
 # and, given OTHER_BUILD_DIR, the last two for that build too (an earlier commit's binaries).
@@ -22,7 +22,8 @@ command -v ffmpeg >/dev/null || { echo "render_demo_ratios.sh: ffmpeg not found"
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 mkdir "$dir/dump" "$dir/sink"
-printf '#!/bin/sh\nexec cat > "%s"\n' "$dir/frames.rgba" >"$dir/dump/ffmpeg"
+printf '#!/bin/sh\nprintf "%%s\\0" "$@" > "%s"\nexec cat > "%s"\n' "$dir/arguments" \
+  "$dir/frames.rgba" >"$dir/dump/ffmpeg"
 printf '#!/bin/sh\nexec cat > /dev/null\n' >"$dir/sink/ffmpeg"
 chmod +x "$dir/dump/ffmpeg" "$dir/sink/ffmpeg"
 PATH="$dir/dump:$PATH" "$build/app/tumble" render "$scene" -o "$dir/dump.mp4" -q
@@ -32,11 +33,11 @@ timed() {
   /usr/bin/time -f '%e %U %S' -o "$dir/time" "$@" >/dev/null 2>&1
   awk '{printf "%.2f %.2f\n", $1, $2 + $3}' "$dir/time"
 }
-# The runs, as commands /usr/bin/time can start.
-alone=(sh -c "ffmpeg -hide_banner -nostdin -nostats -loglevel error -y -f rawvideo \
-  -pix_fmt rgba -s 1280x720 -r 30 -i - -c:v libx264 -preset veryfast -qp 21 -threads 3 \
-  -x264-params keyint=60:min-keyint=60:scenecut=0:mvrange-thread=64 -pix_fmt yuv420p \
-  -f mp4 '$dir/alone.mp4' < '$dir/frames.rgba'")
+# The runs, as commands /usr/bin/time can start. ffmpeg alone: the sink's arguments, its last
+# (the output file) replaced, reading the dumped frames.
+mapfile -d '' -t arguments <"$dir/arguments"
+arguments[-1]="$dir/alone.mp4"
+alone=(sh -c 'exec ffmpeg "$@" < "'"$dir/frames.rgba"'"' ffmpeg "${arguments[@]}")
 render() { timed "$1/app/tumble" render "$scene" -o "$dir/out.mp4" -q; }
 render_side() { timed env PATH="$dir/sink:$PATH" "$1/app/tumble" render "$scene" -o "$dir/out.mp4" -q; }
 

@@ -213,10 +213,10 @@ class FfmpegSink final : public QueuedSink {
         pipe_broken_ = true;
       }
       // Kept until the pipe can hold none of it (see above), then drawn into again.
-      for (InPipe& earlier : in_pipe_) earlier.bytes_after += item.rgba.size();
-      in_pipe_.push_back({std::move(item.rgba), 0});
+      bytes_in_ += item.rgba.size();
+      in_pipe_.push_back({std::move(item.rgba), bytes_in_});
       item.rgba = {};
-      while (!in_pipe_.empty() && in_pipe_.front().bytes_after >= pipe_capacity_) {
+      while (!in_pipe_.empty() && bytes_in_ - in_pipe_.front().end >= pipe_capacity_) {
         queue_.recycle(std::move(in_pipe_.front().rgba));
         in_pipe_.pop_front();
       }
@@ -274,12 +274,13 @@ class FfmpegSink final : public QueuedSink {
   bool pipe_broken_ = false;
   std::string failure_;  // why the output failed, repeated by later writes
   /// The writer's (until joined): frames ffmpeg may not have read yet, oldest first, each with
-  /// the bytes put into the pipe after it.
+  /// the count of bytes_in_ once it had gone in.
   struct InPipe {
     std::vector<std::uint8_t> rgba;
-    std::size_t bytes_after = 0;
+    std::size_t end = 0;
   };
   std::deque<InPipe> in_pipe_;
+  std::size_t bytes_in_ = 0;       // put into the pipe so far
   std::size_t pipe_capacity_ = 0;  // bytes; 0: unknown (then frames are written, not spliced)
   bool splice_ = false;
 };
