@@ -1,139 +1,94 @@
 #include "fxaa_blocks.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cstddef>
+#include <cstring>
 #include <utility>
 
 namespace tumble::render::detail {
 
 namespace {
 
-/// The first, coarse scan's block side: a range over each block and its rim.
-constexpr int kCoarseBlock = 8;
+static_assert(kEdgeBlock == 4, "a block's marks are read as one 32-bit word");
 
-/// Whether a green range lo..hi (0..255) passes the block test: hi - lo >= max(0.0312 * 255,
-/// lo / 8), kept in integers (0.0312 * 255 = 7.96, so a range of 8).
-bool has_contrast(int lo, int hi) {
-  return hi - lo >= 8 && 8 * (hi - lo) >= lo;
-}
-
-/// Green of pixel (x, y), clamped to the image (the filter's texture clamps to the edge).
-int green(const std::uint8_t* rgba, int width, int height, int x, int y) {
-  x = std::clamp(x, 0, width - 1);
-  y = std::clamp(y, 0, height - 1);
-  return rgba[4 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
-                   static_cast<std::size_t>(x)) +
-              1];
-}
-
-/// Whether the filter's own test can pass at pixel (x, y): the green range over the pixel,
-/// its four sides and two diagonals (up-right, down-left) against max(0.0312, hi / 8). A
-/// rounding step looser than the shader's float test, so that every pixel it filters is kept.
-bool pixel_passes(const std::uint8_t* rgba, int width, int height, int x, int y) {
-  const int m = green(rgba, width, height, x, y);
-  const int around[6] = {
-      green(rgba, width, height, x, y + 1),     green(rgba, width, height, x + 1, y),
-      green(rgba, width, height, x, y - 1),     green(rgba, width, height, x - 1, y),
-      green(rgba, width, height, x + 1, y + 1), green(rgba, width, height, x - 1, y - 1)};
-  int lo = m;
-  int hi = m;
-  for (int v : around) {
-    lo = std::min(lo, v);
-    hi = std::max(hi, v);
+/// Row `rgba`'s green bytes, the first and the last repeated once on either side (the filter's
+/// texture clamps to the edge): out[0] .. out[width + 1]. A pixel is read as one 32-bit word,
+/// green its second byte in memory, so that the loop vectorises.
+void green_row(const std::uint8_t* __restrict rgba, std::size_t width,
+               std::uint8_t* __restrict out) {
+  for (std::size_t x = 0; x < width; ++x) {
+    std::uint32_t pixel = 0;
+    std::memcpy(&pixel, rgba + 4 * x, 4);
+    out[x + 1] =
+        static_cast<std::uint8_t>(pixel >> (std::endian::native == std::endian::little ? 8 : 16));
   }
-  return hi - lo >= 7 && 8 * (hi - lo) >= hi - 1;
+  out[0] = out[1];
+  out[width + 1] = out[width];
 }
 
-/// Whether any pixel of the kEdgeBlock-sided block (bx, by) passes the filter's test.
-bool block_passes(const std::uint8_t* rgba, int width, int height, int bx, int by) {
-  const int y1 = std::min(height, (by + 1) * kEdgeBlock);
-  const int x1 = std::min(width, (bx + 1) * kEdgeBlock);
-  for (int y = by * kEdgeBlock; y < y1; ++y) {
-    for (int x = bx * kEdgeBlock; x < x1; ++x) {
-      if (pixel_passes(rgba, width, height, x, y)) return true;
-    }
+/// Sets marks[x] for each pixel x of a row that passes the test (see the header), given the
+/// padded green rows below it, its own and above it. Bytes only, without branches: the
+/// compiler turns it into 16-pixel vector operations (min, max, compare).
+void mark_row(const std::uint8_t* __restrict below, const std::uint8_t* __restrict row,
+              const std::uint8_t* __restrict above, std::size_t width,
+              std::uint8_t* __restrict marks) {
+  for (std::size_t x = 0; x < width; ++x) {
+    const std::uint8_t m = row[x + 1], n = above[x + 1], e = row[x + 2], s = below[x + 1],
+                       w = row[x], ne = above[x + 2], sw = below[x];
+    const std::uint8_t lo =
+        std::min(std::min(std::min(m, n), std::min(e, s)), std::min(std::min(w, ne), sw));
+    const std::uint8_t hi =
+        std::max(std::max(std::max(m, n), std::max(e, s)), std::max(std::max(w, ne), sw));
+    const auto range = static_cast<std::uint8_t>(hi - lo);
+    // 8 * range >= hi - 1 is range >= ceil((hi - 1) / 8): with hi = 8q + r, q + (r >= 2).
+    const auto eighth = static_cast<std::uint8_t>((hi >> 3) + ((hi & 7) > 1 ? 1 : 0));
+    marks[x] =
+        static_cast<std::uint8_t>(marks[x] | (range >= std::max<std::uint8_t>(8, eighth) ? 1 : 0));
   }
-  return false;
 }
 
 }  // namespace
 
-static void find_coarse_blocks(const std::uint8_t* rgba, int width, int height,
-                               std::vector<BlockRun>& runs) {
-  runs.clear();
-  const int columns = (width + kCoarseBlock - 1) / kCoarseBlock;
-  const int rows = (height + kCoarseBlock - 1) / kCoarseBlock;
-  const std::size_t row_bytes = 4 * static_cast<std::size_t>(width);
-  // Per pixel column, the byte-wise min and max over the block row's rows and its rim: every
-  // channel at once (vectorises), of which only green is used.
-  std::vector<std::uint8_t> low(row_bytes);
-  std::vector<std::uint8_t> high(row_bytes);
-  for (int by = 0; by < rows; ++by) {
-    const int y0 = std::max(0, by * kCoarseBlock - 1);
-    const int y1 = std::min(height, (by + 1) * kCoarseBlock + 1);
-    const std::uint8_t* first = rgba + row_bytes * static_cast<std::size_t>(y0);
-    std::copy(first, first + row_bytes, low.begin());
-    std::copy(first, first + row_bytes, high.begin());
-    for (int y = y0 + 1; y < y1; ++y) {
-      const std::uint8_t* row = rgba + row_bytes * static_cast<std::size_t>(y);
-      std::uint8_t* lo = low.data();
-      std::uint8_t* hi = high.data();
-      for (std::size_t i = 0; i < row_bytes; ++i) {
-        lo[i] = std::min(lo[i], row[i]);
-        hi[i] = std::max(hi[i], row[i]);
-      }
-    }
-    int run_start = -1;
-    for (int bx = 0; bx <= columns; ++bx) {
-      bool edge = false;
-      if (bx < columns) {
-        const int x0 = std::max(0, bx * kCoarseBlock - 1);
-        const int x1 = std::min(width, (bx + 1) * kCoarseBlock + 1);
-        int lo = 255;
-        int hi = 0;
-        for (int x = x0; x < x1; ++x) {
-          lo = std::min(lo, static_cast<int>(low[4 * static_cast<std::size_t>(x) + 1]));
-          hi = std::max(hi, static_cast<int>(high[4 * static_cast<std::size_t>(x) + 1]));
-        }
-        edge = has_contrast(lo, hi);
-      }
-      if (edge && run_start < 0) run_start = bx;
-      if (!edge && run_start >= 0) {
-        runs.push_back({by, run_start, bx - run_start});
-        run_start = -1;
-      }
-    }
-  }
-}
-
 void find_edge_blocks(const std::uint8_t* rgba, int width, int height,
                       std::vector<BlockRun>& runs) {
-  std::vector<BlockRun>& coarse = runs;  // refined into `fine`, then swapped back
-  find_coarse_blocks(rgba, width, height, coarse);
-  thread_local std::vector<BlockRun> fine;
-  fine.clear();
-  constexpr int kSplit = kCoarseBlock / kEdgeBlock;
-  for (const BlockRun& run : coarse) {
-    for (int sub = 0; sub < kSplit; ++sub) {
-      const int by = run.row * kSplit + sub;
-      if (by * kEdgeBlock >= height) break;
-      const int end =
-          std::min((run.first + run.count) * kSplit, (width + kEdgeBlock - 1) / kEdgeBlock);
-      for (int bx = run.first * kSplit; bx < end; ++bx) {
-        if (!block_passes(rgba, width, height, bx, by)) continue;
-        if (!fine.empty() && fine.back().row == by && fine.back().first + fine.back().count == bx) {
-          ++fine.back().count;
-        } else {
-          fine.push_back({by, bx, 1});
-        }
+  runs.clear();
+  if (width <= 0 || height <= 0) return;
+  const auto w = static_cast<std::size_t>(width);
+  const std::size_t padded = w + 2;
+  const std::size_t columns = (w + kEdgeBlock - 1) / kEdgeBlock;
+  thread_local std::vector<std::uint8_t> scratch;
+  scratch.assign(3 * padded + columns * kEdgeBlock, 0);
+  // Rows y - 1, y and y + 1 (clamped to the image), then a block row's marks, a pixel row's
+  // ORed together (zero past the last pixel).
+  std::uint8_t* lines[3] = {scratch.data(), scratch.data() + padded, scratch.data() + 2 * padded};
+  std::uint8_t* const marks = scratch.data() + 3 * padded;
+  const std::size_t row_bytes = 4 * w;
+  green_row(rgba, w, lines[1]);
+  std::memcpy(lines[0], lines[1], padded);
+  for (int y = 0; y < height; ++y) {
+    if (y + 1 < height) {
+      green_row(rgba + row_bytes * static_cast<std::size_t>(y + 1), w, lines[2]);
+    } else {
+      std::memcpy(lines[2], lines[1], padded);
+    }
+    mark_row(lines[0], lines[1], lines[2], w, marks);
+    std::rotate(lines, lines + 1, lines + 3);
+    if ((y + 1) % kEdgeBlock != 0 && y + 1 != height) continue;
+    // The block row is complete: its runs of marked blocks.
+    const int row = y / kEdgeBlock;
+    int start = -1;
+    for (std::size_t bx = 0; bx <= columns; ++bx) {
+      std::uint32_t four = 0;
+      if (bx < columns) std::memcpy(&four, marks + kEdgeBlock * bx, 4);
+      if (four != 0 && start < 0) start = static_cast<int>(bx);
+      if (four == 0 && start >= 0) {
+        runs.push_back({row, start, static_cast<int>(bx) - start});
+        start = -1;
       }
     }
+    std::memset(marks, 0, columns * kEdgeBlock);
   }
-  // Sub-rows of one coarse row come interleaved by coarse run: sort by row, then column.
-  std::sort(fine.begin(), fine.end(), [](const BlockRun& a, const BlockRun& b) {
-    return a.row != b.row ? a.row < b.row : a.first < b.first;
-  });
-  runs.swap(fine);
 }
 
 std::vector<PixelBox> disjoint_cover(const std::vector<PixelBox>& boxes) {

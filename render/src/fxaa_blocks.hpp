@@ -21,11 +21,12 @@ struct BlockRun {
 /// The runs of kEdgeBlock-sided blocks of an RGBA8 image (`width` x `height`, 4 bytes a pixel,
 /// rows bottom-up as GL reads them) holding a pixel where the FXAA filter's contrast test can
 /// pass: the green range over the pixel, its four sides and its up-right and down-left
-/// diagonals at least max(0.0312, 1/8 of its brightest), in integers and a rounding step
-/// looser than the shader's float test, so every pixel the shader filters is in a block. A
-/// first scan over 8x8 blocks and their one-pixel rim (range at least 8 in 0..255 and 1/8 of
-/// the darkest there, which no pixel of a block failing it can pass) leaves the pixel test to
-/// the few blocks near edges. Runs come row by row, left to right; `runs` is cleared first.
+/// diagonals (clamped to the image) at least 8 and at least (its brightest - 1) / 8, in 0..255.
+/// The shader's test in floats is max(0.0312, 1/8 of the brightest), and 0.0312 * 255 = 7.96:
+/// every pixel it filters passes (the second bound a rounding step looser), so every such pixel
+/// is in a block. Every pixel is tested, a row at a time on its green bytes, in vector
+/// operations. Runs come row by row, left to right, each as long as it can be; `runs` is
+/// cleared first.
 void find_edge_blocks(const std::uint8_t* rgba, int width, int height, std::vector<BlockRun>& runs);
 
 /// A rectangle of pixels, GL's bottom-up coordinates: [x0, x1) x [y0, y1).

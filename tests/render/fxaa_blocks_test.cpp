@@ -112,6 +112,64 @@ TEST(FxaaBlocks, OneVerticalEdgeGivesOneBlockARow) {
   }
 }
 
+/// The blocks' test at one pixel, in integers, as the header states it: the green range over
+/// the pixel, its four sides and two diagonals (clamped), at least 8 and 8 * range >= hi - 1.
+bool integer_test_passes(const std::vector<std::uint8_t>& rgba, int width, int height, int x,
+                         int y) {
+  const auto at = [&](int px, int py) {
+    px = std::clamp(px, 0, width - 1);
+    py = std::clamp(py, 0, height - 1);
+    return static_cast<int>(rgba[4 * static_cast<std::size_t>(py * width + px) + 1]);
+  };
+  const int v[7] = {at(x, y),     at(x, y + 1),     at(x + 1, y),    at(x, y - 1),
+                    at(x - 1, y), at(x + 1, y + 1), at(x - 1, y - 1)};
+  const int lo = *std::min_element(v, v + 7);
+  const int hi = *std::max_element(v, v + 7);
+  return hi - lo >= 8 && 8 * (hi - lo) >= hi - 1;
+}
+
+TEST(FxaaBlocks, RunsAreTheBlocksWhereSomePixelPassesAsLongAsTheyCanBe) {
+  // Random sizes (most not multiples of the block side, down to one pixel) and contents
+  // (noise, faint noise, sparse dark dots, a range of 7 to 8 at the threshold), against every
+  // pixel tested one by one: the same blocks, in maximal runs, row by row, left to right.
+  std::mt19937 random(11);
+  for (int trial = 0; trial < 400; ++trial) {
+    const int width = 1 + static_cast<int>(random() % 70);
+    const int height = 1 + static_cast<int>(random() % 50);
+    const int kind = static_cast<int>(random() % 4);
+    std::vector<std::uint8_t> rgba(4 * static_cast<std::size_t>(width * height));
+    for (std::uint8_t& byte : rgba) {
+      const auto r = static_cast<std::uint32_t>(random());
+      byte = static_cast<std::uint8_t>(kind == 0   ? r % 256
+                                       : kind == 1 ? 100 + r % 12
+                                       : kind == 2 ? (r % 9 != 0 ? 200 : 30)
+                                                   : 40 + r % 9);
+    }
+    std::set<std::pair<int, int>> expected;
+    for (int y = 0; y < height; ++y) {
+      for (int x = 0; x < width; ++x) {
+        if (integer_test_passes(rgba, width, height, x, y))
+          expected.insert({y / kEdgeBlock, x / kEdgeBlock});
+      }
+    }
+    std::vector<BlockRun> runs;
+    find_edge_blocks(rgba.data(), width, height, runs);
+    std::set<std::pair<int, int>> found;
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      const BlockRun& run = runs[i];
+      ASSERT_GT(run.count, 0);
+      for (int b = 0; b < run.count; ++b) found.insert({run.row, run.first + b});
+      if (i == 0) continue;
+      const BlockRun& before = runs[i - 1];
+      // In order, and never touching the run before it in the same row.
+      EXPECT_TRUE(before.row < run.row ||
+                  (before.row == run.row && before.first + before.count < run.first))
+          << "trial " << trial << " run " << i;
+    }
+    EXPECT_EQ(found, expected) << "trial " << trial << ": " << width << "x" << height;
+  }
+}
+
 /// Per pixel of a 64x48 grid: how many of `boxes` cover it.
 std::vector<int> cover_counts(const std::vector<PixelBox>& boxes) {
   std::vector<int> counts(64 * 48, 0);
