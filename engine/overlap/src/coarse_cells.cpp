@@ -44,15 +44,19 @@ void CoarseCells::find_vertex_cells(unsigned threads) {
   vertex_cell_.resize(n);
   in_range_.resize(n);
   std::vector<CellCoordinates> low(threads, CellCoordinates{}), high(threads, CellCoordinates{});
+  std::vector<std::uint8_t> all_in_range(threads, 1);
   on_threads(threads, [&](unsigned thread) {
+    bool all = true;
     CellCoordinates least{}, most{};
     least.fill(std::numeric_limits<std::int32_t>::max());
     most.fill(std::numeric_limits<std::int32_t>::min());
-    for (std::size_t v = n * thread / threads; v < n * (thread + 1) / threads; ++v) {
+    const std::size_t first = n * thread / threads, last = n * (thread + 1) / threads;
+    for (std::size_t v = first; v < last; ++v) {
       CellCoordinates& c = vertex_cell_[v];
       const Eigen::Vector3d& p = mesh_.positions[v];
       in_range_[v] = detail::in_filter_range(p.x()) && detail::in_filter_range(p.y()) &&
                      detail::in_filter_range(p.z());
+      all = all && in_range_[v] != 0;
       for (int axis = 0; axis < 3; ++axis) {
         c[axis] = coarse_cell_of(mesh_.positions[v][axis], inverse_);
         least[axis] = std::min(least[axis], c[axis]);
@@ -61,7 +65,9 @@ void CoarseCells::find_vertex_cells(unsigned threads) {
     }
     low[thread] = least;
     high[thread] = most;
+    all_in_range[thread] = all ? 1 : 0;
   });
+  all_in_range_ = std::find(all_in_range.begin(), all_in_range.end(), 0) == all_in_range.end();
   CellCoordinates least = low.front(), most = high.front();
   for (unsigned thread = 1; thread < threads; ++thread) {
     for (int axis = 0; axis < 3; ++axis) {
@@ -118,12 +124,31 @@ inline CoarseCells::Listing CoarseCells::listing(std::uint32_t t) const {
   return out;
 }
 
-/// Counts each cell's faces per thread, numbers the non-empty cells, then lists the faces.
-/// Each vertex's cell is first given by its index in the box: a face whose three agree (most
-/// faces, the cells being many times larger than they) is listed there alone, at once. The
-/// count notes that cell per face (face_cell_), so listing such a face and telling later that
-/// it lies in one cell read one number, not the face's three vertices (on the 1M-triangle torus
-/// the listing took 0.8x the time it took recomputing each face's place).
+/// The directions along which face t projects with certainly positive orientation (see
+/// directions()): along axis a, the orientation of its corners in the plane of the next two
+/// axes; seen from the other side the plane's axes swap and the sign flips exactly (the same
+/// products, subtracted the other way), so one sign serves both directions.
+inline std::uint8_t CoarseCells::face_directions(std::uint32_t t) const {
+  const auto& f = mesh_.triangles[t];
+  if (!all_in_range_ && (in_range_[f[0]] & in_range_[f[1]] & in_range_[f[2]]) == 0) return 0;
+  const Eigen::Vector3d &a = mesh_.positions[f[0]], &b = mesh_.positions[f[1]],
+                        &c = mesh_.positions[f[2]];
+  unsigned out = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u = axis == 2 ? 0 : axis + 1, v = axis == 0 ? 2 : axis - 1;
+    const int sign = certified_orientation_2d(b[u], b[v], c[u], c[v], a[u], a[v]);
+    out |= (sign > 0 ? 1u : 0u) << (2 * axis);
+    out |= (sign < 0 ? 1u : 0u) << (2 * axis + 1);
+  }
+  return static_cast<std::uint8_t>(out);
+}
+
+/// Counts each cell's faces per thread and notes, per cell, the directions every face listed
+/// there allows (face_directions, ANDed), numbers the cells where faces are listed, then lists
+/// the faces that span several cells. Each vertex's cell is first given by its index in the box:
+/// a face whose three agree (most faces, the cells being many times larger than they) lies in
+/// that cell alone. The count notes that cell per face (face_cell_), so telling later that a
+/// face lies in one cell reads one number, not the face's three vertices.
 void CoarseCells::list_faces(unsigned threads) {
   const std::size_t cells = static_cast<std::size_t>(extent_[0] * extent_[1] * extent_[2]);
   const std::size_t n = mesh_.triangles.size(), vertices = mesh_.positions.size();
@@ -139,23 +164,35 @@ void CoarseCells::list_faces(unsigned threads) {
     }
   };
   vertex_index_.resize(vertices);
+  // Each slice's ends are locals: in the loops' tests (the vectors written through captured
+  // references may alias them, for all the compiler knows) a division ran at every face.
   on_threads(threads, [&](unsigned thread) {
-    for (std::size_t v = vertices * thread / threads; v < vertices * (thread + 1) / threads; ++v) {
+    const std::size_t first = vertices * thread / threads;
+    const std::size_t last = vertices * (thread + 1) / threads;
+    for (std::size_t v = first; v < last; ++v) {
       vertex_index_[v] = static_cast<std::uint32_t>(dense_index(vertex_cell_[v]));
     }
   });
+  // Per thread and cell: the spanning faces listed there, and the directions its faces allow
+  // (all six until a face is listed: a face allows at most one of the two along each axis).
   std::vector<std::vector<std::uint32_t>> count(threads, std::vector<std::uint32_t>(cells, 0));
-  std::vector<std::size_t> listings(threads, 0);
+  std::vector<std::vector<std::uint8_t>> directions(
+      threads, std::vector<std::uint8_t>(cells, kAllDirections));
+  std::vector<std::size_t> listings(threads, 0), spanning(threads, 0);
   face_cell_.resize(n);
   on_threads(threads, [&](unsigned thread) {
     std::vector<std::uint32_t>& mine = count[thread];
-    std::size_t total = 0;
-    for (std::size_t t = n * thread / threads; t < n * (thread + 1) / threads; ++t) {
-      const Listing l = listing(static_cast<std::uint32_t>(t));
+    std::vector<std::uint8_t>& allowed = directions[thread];
+    std::size_t total = 0, spanning_total = 0;
+    const std::size_t first = n * thread / threads, last = n * (thread + 1) / threads;
+    for (std::size_t t = first; t < last; ++t) {
+      const auto face = static_cast<std::uint32_t>(t);
+      const Listing l = listing(face);
+      const std::uint8_t along = face_directions(face);
       const bool alone = (l.span[0] | l.span[1] | l.span[2]) == 0;
       face_cell_[t] = alone ? l.low : kSpanning;
       if (alone) {
-        ++mine[l.low];
+        allowed[l.low] &= along;
         ++total;
         continue;
       }
@@ -163,48 +200,59 @@ void CoarseCells::list_faces(unsigned threads) {
       if (total > kListingsPerFace * n) break;
       for_each_cell(l, [&](std::size_t cell) {
         ++mine[cell];
+        allowed[cell] &= along;
         ++total;
+        ++spanning_total;
       });
     }
     listings[thread] = total;
+    spanning[thread] = spanning_total;
   });
-  std::size_t total = 0;
-  for (const std::size_t listed : listings) total = std::min(kTooMany, total + listed);
+  std::size_t total = 0, spanning_total = 0;
+  for (unsigned thread = 0; thread < threads; ++thread) {
+    total = std::min(kTooMany, total + listings[thread]);
+    spanning_total += spanning[thread];
+  }
   if (total > kListingsPerFace * n) return;
-  number_cells(count);
-  faces_.resize(total);
+  number_cells(count, directions);
+  faces_.resize(spanning_total);
   on_threads(threads, [&](unsigned thread) {
     std::vector<std::uint32_t>& cursor = count[thread];
-    for (std::size_t t = n * thread / threads; t < n * (thread + 1) / threads; ++t) {
+    const std::size_t first = n * thread / threads, last = n * (thread + 1) / threads;
+    for (std::size_t t = first; t < last; ++t) {
+      if (face_cell_[t] != kSpanning) continue;
       const auto face = static_cast<std::uint32_t>(t);
-      if (face_cell_[t] != kSpanning) {
-        faces_[cursor[face_cell_[t]]++] = face;
-        continue;
-      }
       for_each_cell(listing(face), [&](std::size_t cell) { faces_[cursor[cell]++] = face; });
     }
   });
   usable_ = true;
 }
 
-/// Numbers the non-empty cells and turns each thread's counts into its cursors in them.
-void CoarseCells::number_cells(std::vector<std::vector<std::uint32_t>>& count) {
+/// Numbers the cells where faces are listed (some thread's directions narrowed there), ANDs
+/// their directions, and turns each thread's counts of spanning faces into its cursors.
+void CoarseCells::number_cells(std::vector<std::vector<std::uint32_t>>& count,
+                               const std::vector<std::vector<std::uint8_t>>& directions) {
   const std::size_t cells = count.front().size();
   index_.assign(cells, 0);
   start_.push_back(0);
   for (std::size_t cell = 0; cell < cells; ++cell) {
     std::uint32_t offset = start_.back();
-    for (std::vector<std::uint32_t>& thread_count : count) {
-      const std::uint32_t here = thread_count[cell];
-      thread_count[cell] = offset;  // now the thread's cursor in this cell
+    std::uint8_t allowed = kAllDirections;
+    bool listed = false;
+    for (std::size_t thread = 0; thread < count.size(); ++thread) {
+      const std::uint32_t here = count[thread][cell];
+      count[thread][cell] = offset;  // now the thread's cursor in this cell
       offset += here;
+      allowed &= directions[thread][cell];
+      listed = listed || directions[thread][cell] != kAllDirections;
     }
-    if (offset == start_.back()) continue;
+    if (!listed) continue;
     index_[cell] = static_cast<std::uint32_t>(coordinates_.size() + 1);
     const auto c = static_cast<std::int64_t>(cell);
     coordinates_.push_back({static_cast<std::int32_t>(origin_[0] + c % extent_[0]),
                             static_cast<std::int32_t>(origin_[1] + c / extent_[0] % extent_[1]),
                             static_cast<std::int32_t>(origin_[2] + c / extent_[0] / extent_[1])});
+    directions_.push_back(allowed);
     start_.push_back(offset);
   }
 }

@@ -197,7 +197,7 @@ void PairSearch::certify_regions(double cell) {
     Tally& tally = tallies_[thread];
     for (std::size_t i; (i = next.fetch_add(1, std::memory_order_relaxed)) < coarse_->size();) {
       ++tally.regions;
-      if (certificate.certify(coarse_->faces(i), coarse_->coordinates(i))) {
+      if (certificate.certify(coarse_->faces(i), coarse_->coordinates(i), coarse_->directions(i))) {
         ++tally.certified;
         continue;
       }
@@ -210,6 +210,17 @@ void PairSearch::certify_regions(double cell) {
   });
   certifying_ = true;
   any_active_ = any_uncertified.load();
+  if (!any_active_) return;
+  // The faces lying in one cell that is not certified (those spanning cells are marked above).
+  on_threads(threads_, [&](unsigned thread) {
+    const auto [first, last] = slice(thread);
+    for (std::size_t t = first; t < last; ++t) {
+      const auto face = static_cast<std::uint32_t>(t);
+      if (coarse_->in_one_cell(face) && uncertified_[coarse_->cell_of_face(face)] != 0) {
+        active_[t] = 1;
+      }
+    }
+  });
 }
 
 /// Whether a pair of faces whose boxes overlap belongs to a coarse cell that is not certified.

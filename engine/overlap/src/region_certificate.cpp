@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "certified_orientation.hpp"
 
@@ -34,44 +35,6 @@ std::pair<unsigned, unsigned> side_of(const CellCoordinates& vertex, const CellC
 
 }  // namespace
 
-/// The projection: along the axis of the largest component of the summed normals of up to 64
-/// of the faces, facing its way (all of them when that fails); then every face must project
-/// with certainly positive orientation (the normal's component along the axis is an orient2d
-/// of the projected corners, certified with Shewchuk's bound).
-bool RegionCertificate::project_positively(std::span<const std::uint32_t> faces) {
-  const std::size_t step = std::max<std::size_t>(1, faces.size() / 64);
-  for (const std::size_t stride : {step, std::size_t{1}}) {
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    for (std::size_t i = 0; i < faces.size(); i += stride) {
-      const auto& t = mesh_.triangles[faces[i]];
-      const Eigen::Vector3d& o = mesh_.positions[t[0]];
-      sum += (mesh_.positions[t[1]] - o).cross(mesh_.positions[t[2]] - o);
-    }
-    int axis = 0;
-    sum.cwiseAbs().maxCoeff(&axis);
-    if (!(std::abs(sum[axis]) > 0.0)) return false;
-    // (u, v, axis) right-handed: counter-clockwise in (u, v) is a normal along +axis.
-    axis_u_ = (axis + 1) % 3;
-    axis_v_ = (axis + 2) % 3;
-    if (sum[axis] < 0.0) std::swap(axis_u_, axis_v_);
-    if (all_positive(faces)) return true;
-    if (stride == 1) return false;
-  }
-  return false;
-}
-
-bool RegionCertificate::all_positive(std::span<const std::uint32_t> faces) const {
-  for (const std::uint32_t f : faces) {
-    const auto& t = mesh_.triangles[f];
-    if (!cells_.in_filter_range(t[0]) || !cells_.in_filter_range(t[1]) ||
-        !cells_.in_filter_range(t[2]) ||
-        certified_orientation_2d(u(t[1]), v(t[1]), u(t[2]), v(t[2]), u(t[0]), v(t[0])) <= 0) {
-      return false;
-    }
-  }
-  return true;
-}
-
 /// The boundary chain: the uses of each edge leaving the cell, +1 from its smaller vertex, -1
 /// from its larger; what does not cancel is the boundary, which must be single (net +-1).
 bool RegionCertificate::find_boundary(std::span<const std::uint32_t> faces,
@@ -79,7 +42,6 @@ bool RegionCertificate::find_boundary(std::span<const std::uint32_t> faces,
   // An edge spans the cell unless both its vertices lie below it, or both above, along an axis.
   boundary_.clear();
   for (const std::uint32_t f : faces) {
-    if (cells_.in_one_cell(f)) continue;  // its edges lie in the cell
     const auto& t = mesh_.triangles[f];
     const auto [below0, above0] = side_of(cells_.vertex_cell(t[0]), cell);
     const auto [below1, above1] = side_of(cells_.vertex_cell(t[1]), cell);
@@ -190,9 +152,21 @@ bool RegionCertificate::loop_is_simple() {
   return true;
 }
 
-bool RegionCertificate::certify(std::span<const std::uint32_t> faces, const CellCoordinates& cell) {
-  return !faces.empty() && project_positively(faces) && find_boundary(faces, cell) &&
-         trace_loop() && loop_is_simple();
+bool RegionCertificate::certify(std::span<const std::uint32_t> spanning,
+                                const CellCoordinates& cell, std::uint8_t directions) {
+  if (directions == 0 || !find_boundary(spanning, cell) || !trace_loop()) return false;
+  // Each direction every face allows, in turn, until the loop projects simple along one.
+  for (int axis = 0; axis < 3; ++axis) {
+    for (int side = 0; side < 2; ++side) {
+      if ((directions >> (2 * axis + side) & 1) == 0) continue;
+      // (u, v, axis) right-handed: counter-clockwise in (u, v) is a normal along +axis.
+      axis_u_ = (axis + 1) % 3;
+      axis_v_ = (axis + 2) % 3;
+      if (side == 1) std::swap(axis_u_, axis_v_);
+      if (loop_is_simple()) return true;
+    }
+  }
+  return false;
 }
 
 }  // namespace tumble::engine::detail

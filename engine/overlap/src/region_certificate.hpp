@@ -38,9 +38,12 @@ class RegionCertificate {
   RegionCertificate(const TriangleMesh& mesh, const CoarseCells& cells)
       : mesh_(mesh), cells_(cells) {}
 
-  /// Whether no two of `faces`, those listed in the cell at `cell`, meet beyond what they
-  /// share (see above). False also when a coordinate lies outside the filter's range.
-  bool certify(std::span<const std::uint32_t> faces, const CellCoordinates& cell);
+  /// Whether no two of the faces listed in the cell at `cell` meet beyond what they share (see
+  /// above), given those that span several cells and the directions along which every face
+  /// listed there projects with certainly positive orientation (CoarseCells::directions: none
+  /// when a coordinate lies outside the filter's range).
+  bool certify(std::span<const std::uint32_t> spanning, const CellCoordinates& cell,
+               std::uint8_t directions);
 
  private:
   struct Edge {
@@ -53,8 +56,6 @@ class RegionCertificate {
     std::uint64_t key;
     std::int32_t uses;
   };
-  bool project_positively(std::span<const std::uint32_t> faces);
-  bool all_positive(std::span<const std::uint32_t> faces) const;
   bool find_boundary(std::span<const std::uint32_t> faces, const CellCoordinates& cell);
   bool trace_loop();
   bool loop_is_simple();
