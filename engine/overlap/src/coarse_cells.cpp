@@ -15,69 +15,62 @@
 namespace tumble::engine::detail {
 namespace {
 
-constexpr double kCoarseCellLimit = 0x1p30;        // cell coordinates are clamped to +-2^30
 constexpr std::size_t kListingsPerFace = 4;        // at most this many listings per face on average
 constexpr std::size_t kBoxCellsPerFace = 2;        // at most this many cells in the box per face
 constexpr std::size_t kMinimumBoxCells = 1 << 16;  // ... or this many
 constexpr std::size_t kTooMany = std::numeric_limits<std::size_t>::max() / 2;
 
-/// v / cell rounded down, but for the rounding of the offset: monotone in v. Clamped by
-/// min and max rather than std::clamp, whose comparisons compile to branches (v is finite).
-std::int32_t coarse_cell_of(double v, double inverse) {
-  const double scaled = std::min(std::max(v * inverse, -kCoarseCellLimit), kCoarseCellLimit);
-  return static_cast<std::int32_t>(static_cast<std::int64_t>(scaled + kCoarseCellLimit) -
-                                   static_cast<std::int64_t>(kCoarseCellLimit));
-}
-
 }  // namespace
 
 CoarseCells::CoarseCells(const TriangleMesh& mesh, double cell, unsigned threads)
     : mesh_(mesh), inverse_(1.0 / cell) {
-  if (!(inverse_ > 0.0 && std::isfinite(inverse_)) || mesh.triangles.empty()) return;
+  if (!(inverse_ > 0.0 && std::isfinite(inverse_)) || mesh.triangles.empty() ||
+      mesh.triangles.size() >= (std::size_t{1} << kFaceBits)) {
+    return;  // not usable: a listing keeps its face in kFaceBits bits
+  }
   threads = std::max(1u, threads);
+  find_box(threads);
+  if (!choose_layout()) return;
   find_vertex_cells(threads);
-  if (choose_layout()) list_faces(threads);
+  list_faces(threads);
 }
 
-void CoarseCells::find_vertex_cells(unsigned threads) {
-  const std::size_t n = mesh_.positions.size();
-  vertex_cell_.resize(n);
-  in_range_.resize(n);
-  std::vector<CellCoordinates> low(threads, CellCoordinates{}), high(threads, CellCoordinates{});
+/// The box of the vertices' cells, from the least and greatest coordinates, and whether every
+/// vertex is in the filter's range (when one is not, which are).
+void CoarseCells::find_box(unsigned threads) {
+  const std::vector<Eigen::Vector3d>& positions = mesh_.positions;
+  const std::size_t n = positions.size();
+  std::vector<Eigen::Vector3d> low(threads, positions.front()), high(threads, positions.front());
   std::vector<std::uint8_t> all_in_range(threads, 1);
   on_threads(threads, [&](unsigned thread) {
+    Eigen::Vector3d least = positions.front(), most = least;
     bool all = true;
-    CellCoordinates least{}, most{};
-    least.fill(std::numeric_limits<std::int32_t>::max());
-    most.fill(std::numeric_limits<std::int32_t>::min());
     const std::size_t first = n * thread / threads, last = n * (thread + 1) / threads;
     for (std::size_t v = first; v < last; ++v) {
-      CellCoordinates& c = vertex_cell_[v];
-      const Eigen::Vector3d& p = mesh_.positions[v];
-      in_range_[v] = detail::in_filter_range(p.x()) && detail::in_filter_range(p.y()) &&
-                     detail::in_filter_range(p.z());
-      all = all && in_range_[v] != 0;
-      for (int axis = 0; axis < 3; ++axis) {
-        c[axis] = coarse_cell_of(mesh_.positions[v][axis], inverse_);
-        least[axis] = std::min(least[axis], c[axis]);
-        most[axis] = std::max(most[axis], c[axis]);
-      }
+      const Eigen::Vector3d& p = positions[v];
+      least = least.cwiseMin(p);
+      most = most.cwiseMax(p);
+      all &= in_filter_range(p.x()) & in_filter_range(p.y()) & in_filter_range(p.z());
     }
     low[thread] = least;
     high[thread] = most;
     all_in_range[thread] = all ? 1 : 0;
   });
-  all_in_range_ = std::find(all_in_range.begin(), all_in_range.end(), 0) == all_in_range.end();
-  CellCoordinates least = low.front(), most = high.front();
+  Eigen::Vector3d least = low.front(), most = high.front();
   for (unsigned thread = 1; thread < threads; ++thread) {
-    for (int axis = 0; axis < 3; ++axis) {
-      least[axis] = std::min(least[axis], low[thread][axis]);
-      most[axis] = std::max(most[axis], high[thread][axis]);
-    }
+    least = least.cwiseMin(low[thread]);
+    most = most.cwiseMax(high[thread]);
   }
-  origin_ = least;
   for (int axis = 0; axis < 3; ++axis) {
-    extent_[axis] = std::int64_t{most[axis]} - least[axis] + 1;
+    origin_[axis] = cell_of(least[axis]);
+    extent_[axis] = std::int64_t{cell_of(most[axis])} - origin_[axis] + 1;
+  }
+  all_in_range_ = std::find(all_in_range.begin(), all_in_range.end(), 0) == all_in_range.end();
+  if (all_in_range_) return;
+  in_range_.resize(n);
+  for (std::size_t v = 0; v < n; ++v) {
+    const Eigen::Vector3d& p = positions[v];
+    in_range_[v] = in_filter_range(p.x()) && in_filter_range(p.y()) && in_filter_range(p.z());
   }
 }
 
@@ -89,33 +82,43 @@ bool CoarseCells::choose_layout() {
   return cells <= static_cast<double>(limit);
 }
 
-inline CoarseCells::Range CoarseCells::range(std::uint32_t t) const {
-  const auto& f = mesh_.triangles[t];
-  const CellCoordinates &a = vertex_cell_[f[0]], &b = vertex_cell_[f[1]], &c = vertex_cell_[f[2]];
+/// Each vertex's cell, as its index in the box.
+void CoarseCells::find_vertex_cells(unsigned threads) {
+  const std::size_t vertices = mesh_.positions.size();
+  vertex_index_.resize(vertices);
+  // Each slice's ends are locals: in the loops' tests (the vectors written through captured
+  // references may alias them, for all the compiler knows) a division ran at every element.
+  on_threads(threads, [&](unsigned thread) {
+    const std::size_t first = vertices * thread / threads;
+    const std::size_t last = vertices * (thread + 1) / threads;
+    for (std::size_t v = first; v < last; ++v) {
+      vertex_index_[v] =
+          static_cast<std::uint32_t>(dense_index(vertex_cell(static_cast<std::uint32_t>(v))));
+    }
+  });
+}
+
+inline CoarseCells::Range CoarseCells::range(const CellCoordinates (&corner)[3]) {
   Range r;
   for (int axis = 0; axis < 3; ++axis) {
-    r.low[axis] = std::min({a[axis], b[axis], c[axis]});
-    r.high[axis] = std::max({a[axis], b[axis], c[axis]});
+    r.low[axis] = std::min({corner[0][axis], corner[1][axis], corner[2][axis]});
+    r.high[axis] = std::max({corner[0][axis], corner[1][axis], corner[2][axis]});
   }
   return r;
 }
 
-std::size_t CoarseCells::dense_index(const CellCoordinates& c) const {
-  return static_cast<std::size_t>(
-      ((std::int64_t{c[2]} - origin_[2]) * extent_[1] + (std::int64_t{c[1]} - origin_[1])) *
-          extent_[0] +
-      (std::int64_t{c[0]} - origin_[0]));
+inline CoarseCells::Range CoarseCells::range(std::uint32_t t) const {
+  const auto& f = mesh_.triangles[t];
+  const CellCoordinates corner[3] = {vertex_cell(f[0]), vertex_cell(f[1]), vertex_cell(f[2])};
+  return range(corner);
 }
 
-/// Where face t is listed (spans beyond 0xffff clamped to it). Inline: called out of line, its
-/// 10-byte result went through the stack in pieces and was read back whole, a stalled load per
-/// face: listing the 1M-triangle torus's faces took 25 ms on one thread or two, and takes 14.5
-/// and 11.5 ms inlined (BM_OverlapCheckTorusTwoThreads 41.6 -> 31.1 ms).
-inline CoarseCells::Listing CoarseCells::listing(std::uint32_t t) const {
-  const auto& f = mesh_.triangles[t];
-  const std::uint32_t first = vertex_index_[f[0]];
-  if (first == vertex_index_[f[1]] && first == vertex_index_[f[2]]) return {first, {0, 0, 0}};
-  const Range r = range(t);
+/// Where a face with corners in cells `corner` is listed (spans beyond 0xffff clamped to it).
+/// Inline: called out of line, its 10-byte result went through the stack in pieces and was read
+/// back whole, a stalled load per face (listing the 1M-triangle torus's faces took 25 ms, then
+/// 14.5 ms inlined).
+inline CoarseCells::Listing CoarseCells::listing(const CellCoordinates (&corner)[3]) const {
+  const Range r = range(corner);
   Listing out{static_cast<std::uint32_t>(dense_index(r.low)), {0, 0, 0}};
   for (int axis = 0; axis < 3; ++axis) {
     const std::int64_t span = std::int64_t{r.high[axis]} - r.low[axis];
@@ -131,27 +134,56 @@ inline CoarseCells::Listing CoarseCells::listing(std::uint32_t t) const {
 inline std::uint8_t CoarseCells::face_directions(std::uint32_t t) const {
   const auto& f = mesh_.triangles[t];
   if (!all_in_range_ && (in_range_[f[0]] & in_range_[f[1]] & in_range_[f[2]]) == 0) return 0;
-  const Eigen::Vector3d &a = mesh_.positions[f[0]], &b = mesh_.positions[f[1]],
-                        &c = mesh_.positions[f[2]];
+  const Eigen::Vector3d& a = mesh_.positions[f[0]];
+  const Eigen::Vector3d ab = mesh_.positions[f[1]] - a, ac = mesh_.positions[f[2]] - a;
   unsigned out = 0;
   for (int axis = 0; axis < 3; ++axis) {
     const int u = axis == 2 ? 0 : axis + 1, v = axis == 0 ? 2 : axis - 1;
-    const int sign = certified_orientation_2d(b[u], b[v], c[u], c[v], a[u], a[v]);
-    out |= (sign > 0 ? 1u : 0u) << (2 * axis);
-    out |= (sign < 0 ? 1u : 0u) << (2 * axis + 1);
+    // certified_orientation_2d(b, c, a) in the (u, v) plane, without branches: the signs vary
+    // from face to face, and mispredicted branches had cost more than the arithmetic.
+    const double left = ab[u] * ac[v], right = ab[v] * ac[u];
+    const double det = left - right;
+    const double bound = 0x1p-51 * (std::abs(left) + std::abs(right));  // as orient2d's
+    out |= static_cast<unsigned>(det > bound) << (2 * axis);
+    out |= static_cast<unsigned>(-det > bound) << (2 * axis + 1);
   }
   return static_cast<std::uint8_t>(out);
 }
 
+/// The edges of a face with corners in cells `corner` that lie outside cell `cell`: both ends
+/// below it, or both above it, along some axis (bit k: the edge from corner k to corner k + 1).
+inline std::uint32_t CoarseCells::edges_outside(const CellCoordinates (&corner)[3],
+                                                const CellCoordinates& cell) {
+  unsigned below[3] = {0, 0, 0}, above[3] = {0, 0, 0};
+  for (int k = 0; k < 3; ++k) {
+    for (int axis = 0; axis < 3; ++axis) {
+      below[k] |= (corner[k][axis] < cell[axis] ? 1u : 0u) << axis;
+      above[k] |= (corner[k][axis] > cell[axis] ? 1u : 0u) << axis;
+    }
+  }
+  std::uint32_t out = 0;
+  for (int k = 0; k < 3; ++k) {
+    const int next = k == 2 ? 0 : k + 1;
+    if ((below[k] & below[next]) != 0 || (above[k] & above[next]) != 0) out |= 1u << k;
+  }
+  return out;
+}
+
+/// The coordinates of the cell with index `cell` in the box.
+CellCoordinates CoarseCells::cell_at(std::size_t cell) const {
+  const auto c = static_cast<std::int64_t>(cell);
+  return {static_cast<std::int32_t>(origin_[0] + c % extent_[0]),
+          static_cast<std::int32_t>(origin_[1] + c / extent_[0] % extent_[1]),
+          static_cast<std::int32_t>(origin_[2] + c / extent_[0] / extent_[1])};
+}
+
 /// Counts each cell's faces per thread and notes, per cell, the directions every face listed
 /// there allows (face_directions, ANDed), numbers the cells where faces are listed, then lists
-/// the faces that span several cells. Each vertex's cell is first given by its index in the box:
-/// a face whose three agree (most faces, the cells being many times larger than they) lies in
-/// that cell alone. The count notes that cell per face (face_cell_), so telling later that a
-/// face lies in one cell reads one number, not the face's three vertices.
+/// the faces that span several cells, which the count noted. A face whose three vertices have
+/// one cell (most faces, the cells being many times larger than they) lies in that cell alone.
 void CoarseCells::list_faces(unsigned threads) {
   const std::size_t cells = static_cast<std::size_t>(extent_[0] * extent_[1] * extent_[2]);
-  const std::size_t n = mesh_.triangles.size(), vertices = mesh_.positions.size();
+  const std::size_t n = mesh_.triangles.size();
   const auto stride_y = static_cast<std::size_t>(extent_[0]);
   const auto stride_z = static_cast<std::size_t>(extent_[0] * extent_[1]);
   // Calls visit(cell) for every cell in the box of a listing.
@@ -163,66 +195,68 @@ void CoarseCells::list_faces(unsigned threads) {
       }
     }
   };
-  vertex_index_.resize(vertices);
-  // Each slice's ends are locals: in the loops' tests (the vectors written through captured
-  // references may alias them, for all the compiler knows) a division ran at every face.
-  on_threads(threads, [&](unsigned thread) {
-    const std::size_t first = vertices * thread / threads;
-    const std::size_t last = vertices * (thread + 1) / threads;
-    for (std::size_t v = first; v < last; ++v) {
-      vertex_index_[v] = static_cast<std::uint32_t>(dense_index(vertex_cell_[v]));
-    }
-  });
   // Per thread and cell: the spanning faces listed there, and the directions its faces allow
   // (all six until a face is listed: a face allows at most one of the two along each axis).
   std::vector<std::vector<std::uint32_t>> count(threads, std::vector<std::uint32_t>(cells, 0));
   std::vector<std::vector<std::uint8_t>> directions(
       threads, std::vector<std::uint8_t>(cells, kAllDirections));
-  std::vector<std::size_t> listings(threads, 0), spanning(threads, 0);
-  face_cell_.resize(n);
+  // Per thread, the faces spanning several cells, in order, with their corners' cells (read
+  // back in order by the listing below, instead of the faces' corners again at random).
+  std::vector<std::vector<SpanningFace>> spanning(threads);
+  std::vector<std::size_t> listings(threads, 0);
   on_threads(threads, [&](unsigned thread) {
     std::vector<std::uint32_t>& mine = count[thread];
     std::vector<std::uint8_t>& allowed = directions[thread];
-    std::size_t total = 0, spanning_total = 0;
+    std::vector<SpanningFace>& spanning_faces = spanning[thread];
+    std::size_t total = 0;
     const std::size_t first = n * thread / threads, last = n * (thread + 1) / threads;
     for (std::size_t t = first; t < last; ++t) {
       const auto face = static_cast<std::uint32_t>(t);
-      const Listing l = listing(face);
+      const auto& f = mesh_.triangles[t];
       const std::uint8_t along = face_directions(face);
-      const bool alone = (l.span[0] | l.span[1] | l.span[2]) == 0;
-      face_cell_[t] = alone ? l.low : kSpanning;
-      if (alone) {
-        allowed[l.low] &= along;
+      const std::uint32_t cell = vertex_index_[f[0]];
+      if (cell == vertex_index_[f[1]] && cell == vertex_index_[f[2]]) {
+        allowed[cell] &= along;
         ++total;
         continue;
       }
+      const SpanningFace spanning_face{face,
+                                       {vertex_cell(f[0]), vertex_cell(f[1]), vertex_cell(f[2])}};
+      const Listing l = listing(spanning_face.corner);
       if (std::max({l.span[0], l.span[1], l.span[2]}) == 0xffff) total = kTooMany;
       if (total > kListingsPerFace * n) break;
-      for_each_cell(l, [&](std::size_t cell) {
-        ++mine[cell];
-        allowed[cell] &= along;
+      spanning_faces.push_back(spanning_face);
+      for_each_cell(l, [&](std::size_t listed) {
+        ++mine[listed];
+        allowed[listed] &= along;
         ++total;
-        ++spanning_total;
       });
     }
     listings[thread] = total;
-    spanning[thread] = spanning_total;
   });
-  std::size_t total = 0, spanning_total = 0;
-  for (unsigned thread = 0; thread < threads; ++thread) {
-    total = std::min(kTooMany, total + listings[thread]);
-    spanning_total += spanning[thread];
-  }
+  std::size_t total = 0;
+  for (const std::size_t listed : listings) total = std::min(kTooMany, total + listed);
   if (total > kListingsPerFace * n) return;
   number_cells(count, directions);
-  faces_.resize(spanning_total);
+  faces_.resize(start_.back());
   on_threads(threads, [&](unsigned thread) {
     std::vector<std::uint32_t>& cursor = count[thread];
-    const std::size_t first = n * thread / threads, last = n * (thread + 1) / threads;
-    for (std::size_t t = first; t < last; ++t) {
-      if (face_cell_[t] != kSpanning) continue;
-      const auto face = static_cast<std::uint32_t>(t);
-      for_each_cell(listing(face), [&](std::size_t cell) { faces_[cursor[cell]++] = face; });
+    for (const SpanningFace& spanning_face : spanning[thread]) {
+      const CellCoordinates(&corner)[3] = spanning_face.corner;
+      const Listing l = listing(corner);
+      // The listing's lowest cell, and each cell's coordinates stepped from it.
+      const CellCoordinates low = range(corner).low;
+      for (std::int32_t z = 0; z <= l.span[2]; ++z) {
+        for (std::int32_t y = 0; y <= l.span[1]; ++y) {
+          const std::size_t row = l.low + static_cast<std::size_t>(z) * stride_z +
+                                  static_cast<std::size_t>(y) * stride_y;
+          for (std::int32_t x = 0; x <= l.span[0]; ++x) {
+            const CellCoordinates cell{low[0] + x, low[1] + y, low[2] + z};
+            faces_[cursor[row + static_cast<std::size_t>(x)]++] =
+                spanning_face.face | edges_outside(corner, cell) << kFaceBits;
+          }
+        }
+      }
     }
   });
   usable_ = true;
@@ -248,10 +282,7 @@ void CoarseCells::number_cells(std::vector<std::vector<std::uint32_t>>& count,
     }
     if (!listed) continue;
     index_[cell] = static_cast<std::uint32_t>(coordinates_.size() + 1);
-    const auto c = static_cast<std::int64_t>(cell);
-    coordinates_.push_back({static_cast<std::int32_t>(origin_[0] + c % extent_[0]),
-                            static_cast<std::int32_t>(origin_[1] + c / extent_[0] % extent_[1]),
-                            static_cast<std::int32_t>(origin_[2] + c / extent_[0] / extent_[1])});
+    coordinates_.push_back(cell_at(cell));
     directions_.push_back(allowed);
     start_.push_back(offset);
   }

@@ -15,6 +15,7 @@
 // cell, most of them, are never listed one by one: listing them all, and reading their corners
 // again in cell order to test them, had cost more than the rest of the checks.
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -37,20 +38,33 @@ class CoarseCells {
   bool usable() const { return usable_; }
   /// The cells where some face is listed.
   std::size_t size() const { return coordinates_.size(); }
-  /// The faces listed in cell `i` that span several cells, and where it is.
+  /// The faces listed in cell `i` that span several cells, and where it is. Each entry is a
+  /// face (its low kFaceBits bits) and which of its edges lie outside the cell (bit k above
+  /// them: the edge from corner k to corner k + 1; see edges_outside).
   std::span<const std::uint32_t> faces(std::size_t i) const {
     return {faces_.data() + start_[i], faces_.data() + start_[i + 1]};
   }
+  static constexpr unsigned kFaceBits = 29;  ///< faces are fewer than 2^29 (find_face_pairs)
   const CellCoordinates& coordinates(std::size_t i) const { return coordinates_[i]; }
   /// Bit 2a (2a + 1) set: every face listed in cell `i` projects along +axis a (-axis a) with
   /// certainly positive orientation (certified_orientation.hpp), its corners in the filter's
   /// range.
   std::uint8_t directions(std::size_t i) const { return directions_[i]; }
-  const CellCoordinates& vertex_cell(std::uint32_t v) const { return vertex_cell_[v]; }
+  /// Vertex v's cell, from its coordinates (a table of them, the size of the vertices, cost
+  /// more to fill than the few lookups of spanning faces' corners cost to compute).
+  CellCoordinates vertex_cell(std::uint32_t v) const {
+    const Eigen::Vector3d& p = mesh_.positions[v];
+    return {cell_of(p.x()), cell_of(p.y()), cell_of(p.z())};
+  }
   /// Whether all three vertices of face `t` lie in one cell (the face is listed there alone).
-  bool in_one_cell(std::uint32_t t) const { return face_cell_[t] != kSpanning; }
+  bool in_one_cell(std::uint32_t t) const {
+    const auto& f = mesh_.triangles[t];
+    return vertex_index_[f[0]] == vertex_index_[f[1]] && vertex_index_[f[0]] == vertex_index_[f[2]];
+  }
   /// The index of the one cell face `t` lies in, given in_one_cell(t).
-  std::size_t cell_of_face(std::uint32_t t) const { return index_[face_cell_[t]] - 1; }
+  std::size_t cell_of_face(std::uint32_t t) const {
+    return index_[vertex_index_[mesh_.triangles[t][0]]] - 1;
+  }
   /// The cell a pair of faces whose boxes overlap belongs to (see above).
   CellCoordinates pair_cell(std::uint32_t t, std::uint32_t u) const;
   /// The index of the cell at `c`, none when no face is listed there.
@@ -65,22 +79,44 @@ class CoarseCells {
     std::uint32_t low;
     std::array<std::uint16_t, 3> span;
   };
+  /// A face spanning several cells, and its corners' cells.
+  struct SpanningFace {
+    std::uint32_t face;
+    CellCoordinates corner[3];
+  };
+  static Range range(const CellCoordinates (&corner)[3]);
   Range range(std::uint32_t t) const;
-  Listing listing(std::uint32_t t) const;
+  Listing listing(const CellCoordinates (&corner)[3]) const;
   std::uint8_t face_directions(std::uint32_t t) const;
-  void find_vertex_cells(unsigned threads);
+  static std::uint32_t edges_outside(const CellCoordinates (&corner)[3],
+                                     const CellCoordinates& cell);
+  CellCoordinates cell_at(std::size_t cell) const;
+  std::size_t dense_index(const CellCoordinates& c) const {
+    return static_cast<std::size_t>(
+        ((std::int64_t{c[2]} - origin_[2]) * extent_[1] + (std::int64_t{c[1]} - origin_[1])) *
+            extent_[0] +
+        (std::int64_t{c[0]} - origin_[0]));
+  }
+  /// v / cell rounded down, but for the rounding of the offset: monotone in v, so the cells of
+  /// the least and the greatest coordinates bound every vertex's. Clamped by min and max rather
+  /// than std::clamp, whose comparisons compile to branches (v is finite).
+  std::int32_t cell_of(double v) const {
+    const double scaled = std::min(std::max(v * inverse_, -kCellLimit), kCellLimit);
+    return static_cast<std::int32_t>(static_cast<std::int64_t>(scaled + kCellLimit) -
+                                     static_cast<std::int64_t>(kCellLimit));
+  }
+  void find_box(unsigned threads);
   bool choose_layout();
+  void find_vertex_cells(unsigned threads);
   void list_faces(unsigned threads);
   void number_cells(std::vector<std::vector<std::uint32_t>>& count,
                     const std::vector<std::vector<std::uint8_t>>& directions);
-  std::size_t dense_index(const CellCoordinates& c) const;
 
   const TriangleMesh& mesh_;
   const double inverse_;
   bool usable_ = false;
   bool all_in_range_ = true;
-  std::vector<CellCoordinates> vertex_cell_;
-  std::vector<std::uint8_t> in_range_;
+  std::vector<std::uint8_t> in_range_;        ///< per vertex, only when some vertex is out of range
   CellCoordinates origin_{};                  ///< the least vertex cell
   std::array<std::int64_t, 3> extent_{};      ///< cells along each axis
   std::vector<CellCoordinates> coordinates_;  ///< of each cell where a face is listed
@@ -89,10 +125,8 @@ class CoarseCells {
   std::vector<std::uint32_t> faces_;
   std::vector<std::uint32_t> index_;  ///< per cell of the box: its index + 1, or 0 when empty
   std::vector<std::uint32_t> vertex_index_;  ///< per vertex: its cell's index in the box
-  /// Per face: the index in the box of the one cell its vertices share, or kSpanning.
-  std::vector<std::uint32_t> face_cell_;
-  static constexpr std::uint32_t kSpanning = 0xffffffff;
   static constexpr std::uint8_t kAllDirections = 0x3f;
+  static constexpr double kCellLimit = 0x1p30;  ///< cell coordinates are clamped to +-2^30
 };
 
 }  // namespace tumble::engine::detail

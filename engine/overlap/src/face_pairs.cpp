@@ -197,13 +197,14 @@ void PairSearch::certify_regions(double cell) {
     Tally& tally = tallies_[thread];
     for (std::size_t i; (i = next.fetch_add(1, std::memory_order_relaxed)) < coarse_->size();) {
       ++tally.regions;
-      if (certificate.certify(coarse_->faces(i), coarse_->coordinates(i), coarse_->directions(i))) {
+      if (certificate.certify(coarse_->faces(i), coarse_->directions(i))) {
         ++tally.certified;
         continue;
       }
       uncertified_[i] = 1;
       any_uncertified.store(true, std::memory_order_relaxed);
-      for (const std::uint32_t f : coarse_->faces(i)) {
+      for (const std::uint32_t entry : coarse_->faces(i)) {
+        const std::uint32_t f = entry & ((1u << CoarseCells::kFaceBits) - 1);
         std::atomic_ref<std::uint8_t>(active_[f]).store(1, std::memory_order_relaxed);
       }
     }

@@ -22,37 +22,18 @@ bool certainly_onward(double au, double av, double bu, double bv, double cu, dou
   return first + second > 0x1p-50 * (std::abs(first) + std::abs(second));
 }
 
-/// Where a vertex's cell lies from `cell`: bit a of the first mask when below along axis a,
-/// of the second when above.
-std::pair<unsigned, unsigned> side_of(const CellCoordinates& vertex, const CellCoordinates& cell) {
-  unsigned below = 0, above = 0;
-  for (int axis = 0; axis < 3; ++axis) {
-    below |= (vertex[axis] < cell[axis] ? 1u : 0u) << axis;
-    above |= (vertex[axis] > cell[axis] ? 1u : 0u) << axis;
-  }
-  return {below, above};
-}
-
 }  // namespace
 
 /// The boundary chain: the uses of each edge leaving the cell, +1 from its smaller vertex, -1
 /// from its larger; what does not cancel is the boundary, which must be single (net +-1).
-bool RegionCertificate::find_boundary(std::span<const std::uint32_t> faces,
-                                      const CellCoordinates& cell) {
-  // An edge spans the cell unless both its vertices lie below it, or both above, along an axis.
+bool RegionCertificate::find_boundary(std::span<const std::uint32_t> faces) {
   boundary_.clear();
-  for (const std::uint32_t f : faces) {
-    const auto& t = mesh_.triangles[f];
-    const auto [below0, above0] = side_of(cells_.vertex_cell(t[0]), cell);
-    const auto [below1, above1] = side_of(cells_.vertex_cell(t[1]), cell);
-    const auto [below2, above2] = side_of(cells_.vertex_cell(t[2]), cell);
-    if ((below0 | below1 | below2 | above0 | above1 | above2) == 0) continue;
-    const unsigned below[3] = {below0, below1, below2}, above[3] = {above0, above1, above2};
+  for (const std::uint32_t entry : faces) {
+    const auto& t = mesh_.triangles[entry & ((1u << CoarseCells::kFaceBits) - 1)];
+    const std::uint32_t outside = entry >> CoarseCells::kFaceBits;
     for (int corner = 0; corner < 3; ++corner) {
-      const int next = corner == 2 ? 0 : corner + 1;
-      if ((below[corner] & below[next]) != 0 || (above[corner] & above[next]) != 0) {
-        boundary_.push_back({t[corner], t[next]});
-      }
+      if ((outside >> corner & 1) != 0)
+        boundary_.push_back({t[corner], t[corner == 2 ? 0 : corner + 1]});
     }
   }
   const std::size_t size = std::bit_ceil(std::max<std::size_t>(8, 2 * boundary_.size()));
@@ -152,9 +133,8 @@ bool RegionCertificate::loop_is_simple() {
   return true;
 }
 
-bool RegionCertificate::certify(std::span<const std::uint32_t> spanning,
-                                const CellCoordinates& cell, std::uint8_t directions) {
-  if (directions == 0 || !find_boundary(spanning, cell) || !trace_loop()) return false;
+bool RegionCertificate::certify(std::span<const std::uint32_t> spanning, std::uint8_t directions) {
+  if (directions == 0 || !find_boundary(spanning) || !trace_loop()) return false;
   // Each direction every face allows, in turn, until the loop projects simple along one.
   for (int axis = 0; axis < 3; ++axis) {
     for (int side = 0; side < 2; ++side) {

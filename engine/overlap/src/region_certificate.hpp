@@ -38,12 +38,12 @@ class RegionCertificate {
   RegionCertificate(const TriangleMesh& mesh, const CoarseCells& cells)
       : mesh_(mesh), cells_(cells) {}
 
-  /// Whether no two of the faces listed in the cell at `cell` meet beyond what they share (see
-  /// above), given those that span several cells and the directions along which every face
-  /// listed there projects with certainly positive orientation (CoarseCells::directions: none
-  /// when a coordinate lies outside the filter's range).
-  bool certify(std::span<const std::uint32_t> spanning, const CellCoordinates& cell,
-               std::uint8_t directions);
+  /// Whether no two of the faces listed in a cell meet beyond what they share (see above),
+  /// given the entries of those that span several cells (CoarseCells::faces: each with the
+  /// edges that lie outside the cell) and the directions along which every face listed there
+  /// projects with certainly positive orientation (CoarseCells::directions: none when a
+  /// coordinate lies outside the filter's range).
+  bool certify(std::span<const std::uint32_t> spanning, std::uint8_t directions);
 
  private:
   struct Edge {
@@ -56,7 +56,7 @@ class RegionCertificate {
     std::uint64_t key;
     std::int32_t uses;
   };
-  bool find_boundary(std::span<const std::uint32_t> faces, const CellCoordinates& cell);
+  bool find_boundary(std::span<const std::uint32_t> faces);
   bool trace_loop();
   bool loop_is_simple();
   double u(std::uint32_t v) const { return mesh_.positions[v][axis_u_]; }
