@@ -335,6 +335,7 @@ void solid_properties(TriangleMesh& mesh, const Eigen::Vector3d& reference,
   search.threads =
       options.jobs != 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
   search.face_pairs = options.check_overlap;
+  search.bounds.emplace(report.bounds_min, report.bounds_max);  // bound() found them
   const detail::PartOverlaps overlaps =
       detail::find_part_overlaps(mesh, pass.topology.triangle_part, pass.topology.parts, search);
   detail::OverlapPolicy policy(options.overlap, report.source, pass.topology.parts);

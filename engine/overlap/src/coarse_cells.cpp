@@ -22,53 +22,63 @@ constexpr std::size_t kTooMany = std::numeric_limits<std::size_t>::max() / 2;
 
 }  // namespace
 
-CoarseCells::CoarseCells(const TriangleMesh& mesh, double cell, unsigned threads)
+CoarseCells::CoarseCells(const TriangleMesh& mesh, double cell, unsigned threads,
+                         const std::optional<Bounds>& bounds)
     : mesh_(mesh), inverse_(1.0 / cell) {
   if (!(inverse_ > 0.0 && std::isfinite(inverse_)) || mesh.triangles.empty() ||
       mesh.triangles.size() >= (std::size_t{1} << kFaceBits)) {
     return;  // not usable: a listing keeps its face in kFaceBits bits
   }
   threads = std::max(1u, threads);
+  // Given the bounds, the pass that numbers the vertices' cells also tells whether they are in
+  // the filter's range; a vertex outside the given box sends it back to find the box itself.
+  if (bounds) {
+    set_box(*bounds);
+    if (choose_layout() && find_vertex_cells(threads)) {
+      list_faces(threads);
+      return;
+    }
+  }
   find_box(threads);
-  if (!choose_layout()) return;
-  find_vertex_cells(threads);
+  if (!choose_layout() || !find_vertex_cells(threads)) return;
   list_faces(threads);
 }
 
-/// The box of the vertices' cells, from the least and greatest coordinates, and whether every
-/// vertex is in the filter's range (when one is not, which are).
+/// The box of the cells from the least and the greatest coordinates (cell_of is monotone).
+void CoarseCells::set_box(const Bounds& bounds) {
+  for (int axis = 0; axis < 3; ++axis) {
+    origin_[axis] = cell_of(bounds.first[axis]);
+    extent_[axis] = std::int64_t{cell_of(bounds.second[axis])} - origin_[axis] + 1;
+  }
+}
+
+/// The box of the vertices' cells, from their least and greatest coordinates.
 void CoarseCells::find_box(unsigned threads) {
   const std::vector<Eigen::Vector3d>& positions = mesh_.positions;
   const std::size_t n = positions.size();
-  std::vector<Eigen::Vector3d> low(threads, positions.front()), high(threads, positions.front());
-  std::vector<std::uint8_t> all_in_range(threads, 1);
+  std::vector<Bounds> box(threads, {positions.front(), positions.front()});
   on_threads(threads, [&](unsigned thread) {
-    Eigen::Vector3d least = positions.front(), most = least;
-    bool all = true;
+    Bounds mine = box[thread];
     const std::size_t first = n * thread / threads, last = n * (thread + 1) / threads;
     for (std::size_t v = first; v < last; ++v) {
-      const Eigen::Vector3d& p = positions[v];
-      least = least.cwiseMin(p);
-      most = most.cwiseMax(p);
-      all &= in_filter_range(p.x()) & in_filter_range(p.y()) & in_filter_range(p.z());
+      mine.first = mine.first.cwiseMin(positions[v]);
+      mine.second = mine.second.cwiseMax(positions[v]);
     }
-    low[thread] = least;
-    high[thread] = most;
-    all_in_range[thread] = all ? 1 : 0;
+    box[thread] = mine;
   });
-  Eigen::Vector3d least = low.front(), most = high.front();
-  for (unsigned thread = 1; thread < threads; ++thread) {
-    least = least.cwiseMin(low[thread]);
-    most = most.cwiseMax(high[thread]);
+  Bounds all = box.front();
+  for (const Bounds& part : box) {
+    all.first = all.first.cwiseMin(part.first);
+    all.second = all.second.cwiseMax(part.second);
   }
-  for (int axis = 0; axis < 3; ++axis) {
-    origin_[axis] = cell_of(least[axis]);
-    extent_[axis] = std::int64_t{cell_of(most[axis])} - origin_[axis] + 1;
-  }
-  all_in_range_ = std::find(all_in_range.begin(), all_in_range.end(), 0) == all_in_range.end();
-  if (all_in_range_) return;
-  in_range_.resize(n);
-  for (std::size_t v = 0; v < n; ++v) {
+  set_box(all);
+}
+
+/// Which vertices are in the filter's range, when some is not.
+void CoarseCells::find_in_range() {
+  const std::vector<Eigen::Vector3d>& positions = mesh_.positions;
+  in_range_.resize(positions.size());
+  for (std::size_t v = 0; v < positions.size(); ++v) {
     const Eigen::Vector3d& p = positions[v];
     in_range_[v] = in_filter_range(p.x()) && in_filter_range(p.y()) && in_filter_range(p.z());
   }
@@ -82,20 +92,35 @@ bool CoarseCells::choose_layout() {
   return cells <= static_cast<double>(limit);
 }
 
-/// Each vertex's cell, as its index in the box.
-void CoarseCells::find_vertex_cells(unsigned threads) {
+/// Each vertex's cell, as its index in the box, and whether every vertex is in the filter's
+/// range. False when a vertex lies outside the box.
+bool CoarseCells::find_vertex_cells(unsigned threads) {
   const std::size_t vertices = mesh_.positions.size();
   vertex_index_.resize(vertices);
+  std::vector<std::uint8_t> all_in_range(threads, 1), inside(threads, 1);
   // Each slice's ends are locals: in the loops' tests (the vectors written through captured
   // references may alias them, for all the compiler knows) a division ran at every element.
   on_threads(threads, [&](unsigned thread) {
     const std::size_t first = vertices * thread / threads;
     const std::size_t last = vertices * (thread + 1) / threads;
+    bool all = true, in_box = true;
     for (std::size_t v = first; v < last; ++v) {
-      vertex_index_[v] =
-          static_cast<std::uint32_t>(dense_index(vertex_cell(static_cast<std::uint32_t>(v))));
+      const Eigen::Vector3d& p = mesh_.positions[v];
+      const CellCoordinates c = vertex_cell(static_cast<std::uint32_t>(v));
+      for (int axis = 0; axis < 3; ++axis) {
+        const std::int64_t offset = std::int64_t{c[axis]} - origin_[axis];
+        in_box &= (offset >= 0) & (offset < extent_[axis]);
+      }
+      all &= in_filter_range(p.x()) & in_filter_range(p.y()) & in_filter_range(p.z());
+      vertex_index_[v] = static_cast<std::uint32_t>(dense_index(c));
     }
+    all_in_range[thread] = all ? 1 : 0;
+    inside[thread] = in_box ? 1 : 0;
   });
+  if (std::find(inside.begin(), inside.end(), 0) != inside.end()) return false;
+  all_in_range_ = std::find(all_in_range.begin(), all_in_range.end(), 0) == all_in_range.end();
+  if (!all_in_range_) find_in_range();
+  return true;
 }
 
 inline CoarseCells::Range CoarseCells::range(const CellCoordinates (&corner)[3]) {
@@ -210,6 +235,8 @@ void CoarseCells::list_faces(unsigned threads) {
     std::vector<SpanningFace>& spanning_faces = spanning[thread];
     std::size_t total = 0;
     const std::size_t first = n * thread / threads, last = n * (thread + 1) / threads;
+    // Room for a sixteenth of the faces (about as many as span cells on the 1M-triangle torus).
+    spanning_faces.reserve((last - first) / 16);
     for (std::size_t t = first; t < last; ++t) {
       const auto face = static_cast<std::uint32_t>(t);
       const auto& f = mesh_.triangles[t];

@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "engine/geometry/triangle_mesh.hpp"
@@ -31,9 +32,14 @@ using CellCoordinates = std::array<std::int32_t, 3>;
 
 class CoarseCells {
  public:
-  /// Lists the faces of `mesh` in cells of size `cell`, on `threads` threads. Gives up
-  /// (usable() false) when the faces would be listed more than four times each on average.
-  CoarseCells(const TriangleMesh& mesh, double cell, unsigned threads);
+  /// The least and greatest coordinates of a mesh's vertices.
+  using Bounds = std::pair<Eigen::Vector3d, Eigen::Vector3d>;
+
+  /// Lists the faces of `mesh` in cells of size `cell`, on `threads` threads, given the
+  /// vertices' bounds if known. Gives up (usable() false) when the faces would be listed more
+  /// than four times each on average.
+  CoarseCells(const TriangleMesh& mesh, double cell, unsigned threads,
+              const std::optional<Bounds>& bounds = std::nullopt);
 
   bool usable() const { return usable_; }
   /// The cells where some face is listed.
@@ -106,8 +112,10 @@ class CoarseCells {
                                      static_cast<std::int64_t>(kCellLimit));
   }
   void find_box(unsigned threads);
+  void set_box(const Bounds& bounds);
   bool choose_layout();
-  void find_vertex_cells(unsigned threads);
+  bool find_vertex_cells(unsigned threads);
+  void find_in_range();
   void list_faces(unsigned threads);
   void number_cells(std::vector<std::vector<std::uint32_t>>& count,
                     const std::vector<std::vector<std::uint8_t>>& directions);

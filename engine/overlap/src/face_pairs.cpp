@@ -187,7 +187,7 @@ double PairSearch::median_extent() const {
 
 /// Certifies each coarse cell's faces; marks the faces of the others for the fine grid.
 void PairSearch::certify_regions(double cell) {
-  coarse_.emplace(mesh_, cell, threads_);
+  coarse_.emplace(mesh_, cell, threads_, options_.bounds);
   if (!coarse_->usable()) return;
   uncertified_.assign(coarse_->size(), 0);
   std::atomic<std::size_t> next{0};

@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -73,6 +74,8 @@ struct FacePairOptions {
   bool certify = true;
   /// false: every face and pair goes to the exact predicates (for tests and benchmarks).
   bool filter = true;
+  /// The vertices' least and greatest coordinates, if known (OverlapOptions::bounds).
+  std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> bounds;
 };
 
 /// Judges every pair of non-collinear faces of `mesh` whose boxes (in floats, rounded outward)

@@ -398,6 +398,7 @@ PartOverlaps Analysis::run(const OverlapOptions& options) {
     search.threads = std::max(1u, options.threads);
     search.certify = options.method == FacePairMethod::kCertified;
     search.filter = options.method != FacePairMethod::kExact;
+    search.bounds = options.bounds;
     FacePairs pairs = options.method == FacePairMethod::kReference
                           ? reference_pairs()
                           : find_face_pairs(mesh_, triangle_part_, parts_.size(), *this, search);

@@ -67,6 +67,7 @@ class RegionCertificate {
   int axis_u_ = 0, axis_v_ = 1;  ///< the plane's coordinates, counter-clockwise seen along d
   std::vector<Slot> slots_;
   std::vector<Edge> boundary_;
+  std::vector<std::uint32_t> starting_;  ///< trace_loop's table: boundary_ by start
   std::vector<std::uint32_t> loop_;
   std::vector<double> plane_;          ///< the loop's vertices: u, v, the first again at the end
   std::vector<EdgeBox> boxes_;         ///< of the loop's edges

@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "engine/geometry/triangle_mesh.hpp"
@@ -61,6 +62,10 @@ struct OverlapOptions {
   /// only the containment of parts in each other, which orients them, is decided.
   bool face_pairs = true;
   FacePairMethod method = FacePairMethod::kCertified;
+  /// The least and greatest coordinates of the mesh's vertices, when the caller has them (the
+  /// checks then need one pass over the vertices instead of two); a box that misses a vertex
+  /// only costs that pass back.
+  std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> bounds;
 };
 
 /// How much work the pairs of faces took (for tests and benchmarks).
