@@ -132,12 +132,6 @@ inline CoarseCells::Range CoarseCells::range(const CellCoordinates (&corner)[3])
   return r;
 }
 
-inline CoarseCells::Range CoarseCells::range(std::uint32_t t) const {
-  const auto& f = mesh_.triangles[t];
-  const CellCoordinates corner[3] = {vertex_cell(f[0]), vertex_cell(f[1]), vertex_cell(f[2])};
-  return range(corner);
-}
-
 /// Where a face with corners in cells `corner` is listed (spans beyond 0xffff clamped to it).
 /// Inline: called out of line, its 10-byte result went through the stack in pieces and was read
 /// back whole, a stalled load per face (listing the 1M-triangle torus's faces took 25 ms, then
@@ -315,9 +309,13 @@ void CoarseCells::number_cells(std::vector<std::vector<std::uint32_t>>& count,
   }
 }
 
-CellCoordinates CoarseCells::pair_cell(std::uint32_t t, std::uint32_t u) const {
-  const Range a = range(t), b = range(u);
-  return {std::max(a.low[0], b.low[0]), std::max(a.low[1], b.low[1]), std::max(a.low[2], b.low[2])};
+/// The least coordinates' cell: cell_of is monotone, so that is the least of the corners'
+/// cells, at a third of the cost.
+CellCoordinates CoarseCells::low_cell(std::uint32_t t) const {
+  const auto& f = mesh_.triangles[t];
+  const Eigen::Vector3d low =
+      mesh_.positions[f[0]].cwiseMin(mesh_.positions[f[1]]).cwiseMin(mesh_.positions[f[2]]);
+  return {cell_of(low.x()), cell_of(low.y()), cell_of(low.z())};
 }
 
 std::optional<std::size_t> CoarseCells::find(const CellCoordinates& c) const {

@@ -71,8 +71,13 @@ class CoarseCells {
   std::size_t cell_of_face(std::uint32_t t) const {
     return index_[vertex_index_[mesh_.triangles[t][0]]] - 1;
   }
-  /// The cell a pair of faces whose boxes overlap belongs to (see above).
-  CellCoordinates pair_cell(std::uint32_t t, std::uint32_t u) const;
+  /// The lowest cell face t touches: the cell of its least coordinates.
+  CellCoordinates low_cell(std::uint32_t t) const;
+  /// The cell a pair of faces whose boxes overlap belongs to (see above), given their
+  /// low_cell()s.
+  static CellCoordinates pair_cell(const CellCoordinates& a, const CellCoordinates& b) {
+    return {std::max(a[0], b[0]), std::max(a[1], b[1]), std::max(a[2], b[2])};
+  }
   /// The index of the cell at `c`, none when no face is listed there.
   std::optional<std::size_t> find(const CellCoordinates& c) const;
 
@@ -91,7 +96,6 @@ class CoarseCells {
     CellCoordinates corner[3];
   };
   static Range range(const CellCoordinates (&corner)[3]);
-  Range range(std::uint32_t t) const;
   Listing listing(const CellCoordinates (&corner)[3]) const;
   std::uint8_t face_directions(std::uint32_t t) const;
   static std::uint32_t edges_outside(const CellCoordinates (&corner)[3],

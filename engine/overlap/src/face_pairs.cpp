@@ -123,6 +123,9 @@ class PairSearch {
   bool certifying_ = false;
   bool any_active_ = true;                 ///< whether any face is left for the fine grid
   std::vector<std::uint8_t> uncertified_;  ///< per coarse cell
+  /// Per face judged in the fine grid, when regions were certified: its lowest coarse cell
+  /// (found once a face, not at each of its pairs).
+  std::vector<CellCoordinates> low_cell_;
 };
 
 PairSearch::PairSearch(const TriangleMesh& mesh, const std::vector<std::uint32_t>& triangle_part,
@@ -164,6 +167,7 @@ void PairSearch::prepare(unsigned thread) {
     }
     collinear_[t] = not_collinear ? 0 : 1;
     boxes_[t] = box_of(o, a, b);
+    if (certifying_) low_cell_[t] = coarse_->low_cell(static_cast<std::uint32_t>(t));
   }
 }
 
@@ -227,7 +231,8 @@ void PairSearch::certify_regions(double cell) {
 /// Whether a pair of faces whose boxes overlap belongs to a coarse cell that is not certified.
 bool PairSearch::belongs_to_uncertified(std::uint32_t t, std::uint32_t u) const {
   if (!certifying_) return true;
-  const std::optional<std::size_t> cell = coarse_->find(coarse_->pair_cell(t, u));
+  const std::optional<std::size_t> cell =
+      coarse_->find(CoarseCells::pair_cell(low_cell_[t], low_cell_[u]));
   return !cell || uncertified_[*cell] != 0;
 }
 
@@ -481,6 +486,7 @@ FacePairs PairSearch::run() {
     boxes_.resize(n);
     planes_.resize(n);
     in_range_.resize(n);
+    if (certifying_) low_cell_.resize(n);
     on_threads(threads_, [this](unsigned thread) { prepare(thread); });
   }
   find_pairs(kFineCellsPerExtent * extent);
