@@ -259,6 +259,16 @@ void CoarseCells::list_faces(unsigned threads) {
   for (const std::size_t listed : listings) total = std::min(kTooMany, total + listed);
   if (total > kListingsPerFace * n) return;
   number_cells(count, directions);
+  list_spanning(threads, count, spanning);
+  usable_ = true;
+}
+
+/// Lists each face spanning several cells in every cell it spans, at the threads' cursors,
+/// with the edges of it that lie outside each cell.
+void CoarseCells::list_spanning(unsigned threads, std::vector<std::vector<std::uint32_t>>& count,
+                                const std::vector<std::vector<SpanningFace>>& spanning) {
+  const auto stride_y = static_cast<std::size_t>(extent_[0]);
+  const auto stride_z = static_cast<std::size_t>(extent_[0] * extent_[1]);
   faces_.resize(start_.back());
   on_threads(threads, [&](unsigned thread) {
     std::vector<std::uint32_t>& cursor = count[thread];
@@ -280,7 +290,6 @@ void CoarseCells::list_faces(unsigned threads) {
       }
     }
   });
-  usable_ = true;
 }
 
 /// Numbers the cells where faces are listed (some thread's directions narrowed there), ANDs

@@ -123,6 +123,8 @@ class CoarseCells {
   void list_faces(unsigned threads);
   void number_cells(std::vector<std::vector<std::uint32_t>>& count,
                     const std::vector<std::vector<std::uint8_t>>& directions);
+  void list_spanning(unsigned threads, std::vector<std::vector<std::uint32_t>>& count,
+                     const std::vector<std::vector<SpanningFace>>& spanning);
 
   const TriangleMesh& mesh_;
   const double inverse_;
