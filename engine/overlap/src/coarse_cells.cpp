@@ -111,7 +111,7 @@ bool CoarseCells::find_vertex_cells(unsigned threads) {
         const std::int64_t offset = std::int64_t{c[axis]} - origin_[axis];
         in_box &= (offset >= 0) & (offset < extent_[axis]);
       }
-      all &= in_filter_range(p.x()) & in_filter_range(p.y()) & in_filter_range(p.z());
+      all = all && in_filter_range(p.x()) && in_filter_range(p.y()) && in_filter_range(p.z());
       vertex_index_[v] = static_cast<std::uint32_t>(dense_index(c));
     }
     all_in_range[thread] = all ? 1 : 0;
@@ -158,8 +158,8 @@ inline std::uint8_t CoarseCells::face_directions(std::uint32_t t) const {
   unsigned out = 0;
   for (int axis = 0; axis < 3; ++axis) {
     const int u = axis == 2 ? 0 : axis + 1, v = axis == 0 ? 2 : axis - 1;
-    // certified_orientation_2d(b, c, a) in the (u, v) plane, without branches: the signs vary
-    // from face to face, and mispredicted branches had cost more than the arithmetic.
+    // certified_orientation_2d(b, c, a) in the (u, v) plane, written without branches (the
+    // signs vary from face to face).
     const double left = ab[u] * ac[v], right = ab[v] * ac[u];
     const double det = left - right;
     const double bound = 0x1p-51 * (std::abs(left) + std::abs(right));  // as orient2d's

@@ -197,7 +197,7 @@ void PairSearch::certify_regions(double cell) {
   std::atomic<std::size_t> next{0};
   std::atomic<bool> any_uncertified{false};
   on_threads(threads_, [&](unsigned thread) {
-    RegionCertificate certificate(mesh_, *coarse_);
+    RegionCertificate certificate(mesh_);
     Tally& tally = tallies_[thread];
     for (std::size_t i; (i = next.fetch_add(1, std::memory_order_relaxed)) < coarse_->size();) {
       ++tally.regions;

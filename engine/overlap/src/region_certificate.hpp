@@ -34,9 +34,8 @@ namespace tumble::engine::detail {
 
 class RegionCertificate {
  public:
-  /// For the faces of a closed, consistently wound mesh, listed in `cells`.
-  RegionCertificate(const TriangleMesh& mesh, const CoarseCells& cells)
-      : mesh_(mesh), cells_(cells) {}
+  /// For the faces of a closed, consistently wound mesh, listed in coarse cells.
+  explicit RegionCertificate(const TriangleMesh& mesh) : mesh_(mesh) {}
 
   /// Whether no two of the faces listed in a cell meet beyond what they share (see above),
   /// given the entries of those that span several cells (CoarseCells::faces: each with the
@@ -63,7 +62,6 @@ class RegionCertificate {
   double v(std::uint32_t v) const { return mesh_.positions[v][axis_v_]; }
 
   const TriangleMesh& mesh_;
-  const CoarseCells& cells_;
   int axis_u_ = 0, axis_v_ = 1;  ///< the plane's coordinates, counter-clockwise seen along d
   std::vector<Slot> slots_;
   std::vector<Edge> boundary_;
