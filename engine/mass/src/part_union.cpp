@@ -2,6 +2,8 @@
 #include "part_union.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cstddef>
 #include <exception>
 #include <sstream>
 #include <string>
@@ -50,6 +52,35 @@ std::string union_part_list(const std::vector<std::uint32_t>& parts, std::size_t
   return text + " of " + std::to_string(count);
 }
 
+/// The union's triangles in an order of their own (each rotated to start at its least corner,
+/// then sorted by corners), so that the integrals summed over them do not depend on the order in
+/// which the corefinement returned them.
+void canonical_order(TriangleMesh& solid) {
+  using Corners = std::array<Eigen::Vector3d, 3>;
+  const auto less = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  };
+  std::vector<Corners> triangles;
+  triangles.reserve(solid.triangles.size());
+  for (const auto& t : solid.triangles) {
+    Corners c{solid.positions[t[0]], solid.positions[t[1]], solid.positions[t[2]]};
+    const std::size_t first =
+        static_cast<std::size_t>(std::min_element(c.begin(), c.end(), less) - c.begin());
+    std::rotate(c.begin(), c.begin() + static_cast<std::ptrdiff_t>(first), c.end());
+    triangles.push_back(c);
+  }
+  std::sort(triangles.begin(), triangles.end(), [&](const Corners& a, const Corners& b) {
+    return std::lexicographical_compare(a.begin(), a.end(), b.begin(), b.end(), less);
+  });
+  solid.positions.clear();
+  solid.triangles.clear();
+  for (const Corners& c : triangles) {
+    const auto base = static_cast<std::uint32_t>(solid.positions.size());
+    solid.positions.insert(solid.positions.end(), c.begin(), c.end());
+    solid.triangles.push_back({base, base + 1, base + 2});
+  }
+}
+
 }  // namespace
 
 MomentIntegrals united_integrals(const TriangleMesh& mesh, const Topology& topology,
@@ -67,6 +98,7 @@ MomentIntegrals united_integrals(const TriangleMesh& mesh, const Topology& topol
                      union_part_list(united, topology.parts) + " could not be computed (" +
                      error.what() + "); give --overlap sum to count each part whole");
   }
+  canonical_order(solid);
   const MomentIntegrals merged = solid_integrals(solid, reference);
   const MomentIntegrals total = union_plus(rest, merged);
   report.united_parts = united.size();
