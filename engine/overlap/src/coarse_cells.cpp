@@ -34,13 +34,14 @@ CoarseCells::CoarseCells(const TriangleMesh& mesh, double cell, unsigned threads
   // the filter's range; a vertex outside the given box sends it back to find the box itself.
   if (bounds) {
     set_box(*bounds);
-    if (choose_layout() && find_vertex_cells(threads)) {
-      list_faces(threads);
-      return;
-    }
+  } else {
+    find_box(threads);
   }
-  find_box(threads);
-  if (!choose_layout() || !find_vertex_cells(threads)) return;
+  if (!choose_layout()) return;
+  if (!find_vertex_cells(threads)) {
+    find_box(threads);  // only with a given box (the box found holds every vertex)
+    if (!choose_layout() || !find_vertex_cells(threads)) return;
+  }
   list_faces(threads);
 }
 
@@ -132,12 +133,11 @@ inline CoarseCells::Range CoarseCells::range(const CellCoordinates (&corner)[3])
   return r;
 }
 
-/// Where a face with corners in cells `corner` is listed (spans beyond 0xffff clamped to it).
+/// Where a face whose corners' cells span `r` is listed (spans beyond 0xffff clamped to it).
 /// Inline: called out of line, its 10-byte result went through the stack in pieces and was read
 /// back whole, a stalled load per face (listing the 1M-triangle torus's faces took 25 ms, then
 /// 14.5 ms inlined).
-inline CoarseCells::Listing CoarseCells::listing(const CellCoordinates (&corner)[3]) const {
-  const Range r = range(corner);
+inline CoarseCells::Listing CoarseCells::listing(const Range& r) const {
   Listing out{static_cast<std::uint32_t>(dense_index(r.low)), {0, 0, 0}};
   for (int axis = 0; axis < 3; ++axis) {
     const std::int64_t span = std::int64_t{r.high[axis]} - r.low[axis];
@@ -153,18 +153,14 @@ inline CoarseCells::Listing CoarseCells::listing(const CellCoordinates (&corner)
 inline std::uint8_t CoarseCells::face_directions(std::uint32_t t) const {
   const auto& f = mesh_.triangles[t];
   if (!all_in_range_ && (in_range_[f[0]] & in_range_[f[1]] & in_range_[f[2]]) == 0) return 0;
-  const Eigen::Vector3d& a = mesh_.positions[f[0]];
-  const Eigen::Vector3d ab = mesh_.positions[f[1]] - a, ac = mesh_.positions[f[2]] - a;
+  const Eigen::Vector3d &a = mesh_.positions[f[0]], &b = mesh_.positions[f[1]],
+                        &c = mesh_.positions[f[2]];
   unsigned out = 0;
   for (int axis = 0; axis < 3; ++axis) {
     const int u = axis == 2 ? 0 : axis + 1, v = axis == 0 ? 2 : axis - 1;
-    // certified_orientation_2d(b, c, a) in the (u, v) plane, written without branches (the
-    // signs vary from face to face).
-    const double left = ab[u] * ac[v], right = ab[v] * ac[u];
-    const double det = left - right;
-    const double bound = 0x1p-51 * (std::abs(left) + std::abs(right));  // as orient2d's
-    out |= static_cast<unsigned>(det > bound) << (2 * axis);
-    out |= static_cast<unsigned>(-det > bound) << (2 * axis + 1);
+    const int sign = certified_orientation_2d(b[u], b[v], c[u], c[v], a[u], a[v]);
+    out |= static_cast<unsigned>(sign > 0) << (2 * axis);
+    out |= static_cast<unsigned>(sign < 0) << (2 * axis + 1);
   }
   return static_cast<std::uint8_t>(out);
 }
@@ -243,7 +239,7 @@ void CoarseCells::list_faces(unsigned threads) {
       }
       const SpanningFace spanning_face{face,
                                        {vertex_cell(f[0]), vertex_cell(f[1]), vertex_cell(f[2])}};
-      const Listing l = listing(spanning_face.corner);
+      const Listing l = listing(range(spanning_face.corner));
       if (std::max({l.span[0], l.span[1], l.span[2]}) == 0xffff) total = kTooMany;
       if (total > kListingsPerFace * n) break;
       spanning_faces.push_back(spanning_face);
@@ -274,9 +270,10 @@ void CoarseCells::list_spanning(unsigned threads, std::vector<std::vector<std::u
     std::vector<std::uint32_t>& cursor = count[thread];
     for (const SpanningFace& spanning_face : spanning[thread]) {
       const CellCoordinates(&corner)[3] = spanning_face.corner;
-      const Listing l = listing(corner);
+      const Range r = range(corner);
+      const Listing l = listing(r);
       // The listing's lowest cell, and each cell's coordinates stepped from it.
-      const CellCoordinates low = range(corner).low;
+      const CellCoordinates& low = r.low;
       for (std::int32_t z = 0; z <= l.span[2]; ++z) {
         for (std::int32_t y = 0; y <= l.span[1]; ++y) {
           const std::size_t row = l.low + static_cast<std::size_t>(z) * stride_z +

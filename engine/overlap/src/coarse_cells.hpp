@@ -96,7 +96,7 @@ class CoarseCells {
     CellCoordinates corner[3];
   };
   static Range range(const CellCoordinates (&corner)[3]);
-  Listing listing(const CellCoordinates (&corner)[3]) const;
+  Listing listing(const Range& r) const;
   std::uint8_t face_directions(std::uint32_t t) const;
   static std::uint32_t edges_outside(const CellCoordinates (&corner)[3],
                                      const CellCoordinates& cell);

@@ -64,7 +64,8 @@ struct OverlapOptions {
   FacePairMethod method = FacePairMethod::kCertified;
   /// The least and greatest coordinates of the mesh's vertices, when the caller has them (the
   /// checks then need one pass over the vertices instead of two); a box that misses a vertex
-  /// only costs that pass back.
+  /// only costs that pass back, a box much larger than the vertices' can leave the checks
+  /// without their coarse regions (slower, the same verdicts).
   std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> bounds;
 };
 
