@@ -15,6 +15,7 @@
 #include "app/scene/unit_hint.hpp"
 #include "app/support/csv_writer.hpp"
 #include "app/support/exit_status.hpp"
+#include "app/support/interrupt_guard.hpp"
 #include "app/support/ordered_parallel.hpp"
 #include "base/errors.hpp"
 
@@ -111,6 +112,9 @@ int write_inspection(const InspectOptions& given, std::ostream& out, std::ostrea
     for (const InspectInput& input : inputs) files.push_back(input.file);
     file.emplace(*options.output, files);
   }
+  // Ctrl-C or SIGTERM: the files not yet started are skipped, nothing more is printed, and the
+  // -o file's temporary is removed (the process used to die with it left behind).
+  const InterruptGuard guard;
   std::ostringstream buffer;
   InspectPrinter printer(options, file ? buffer : out, err, batch || inputs.size() > 1);
   // Each file's outcome waits in its slot until every file before it is printed.
@@ -119,13 +123,19 @@ int write_inspection(const InspectOptions& given, std::ostream& out, std::ostrea
   run_ordered(
       items.size(), inspect_jobs(options.jobs),
       [&](std::size_t k) {
+        if (guard.interrupted()) return;
         outcomes[k] = inspect_one(inputs[items[k]], options.mass);
         if (shard) digests[k] = digest_or_unreadable(inputs[items[k]].file);
       },
       [&](std::size_t k) {
+        if (guard.interrupted()) return;
         printer.print(inputs[items[k]].file, std::exchange(outcomes[k], {}),
                       shard ? nlohmann::json{{"item", items[k]}} : nlohmann::json());
       });
+  if (guard.interrupted()) {
+    guard.report(err, "inspect", options.output ? options.output->string() : std::string());
+    return kExitInterrupted;
+  }
   const int status = printer.finish();
   if (!file) return status;
   // json prints nothing unless every file succeeded: then nothing is written either.

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "app/support/exit_status.hpp"
+#include "support/box_files.hpp"
 #include "support/command_test.hpp"
 #include "support/run_command.hpp"
 #include "support/scene_builder.hpp"
@@ -174,6 +175,26 @@ TEST_F(SafeIo, InterruptedBenchLeavesNothingAndExitsWith130) {
   EXPECT_THAT(result.err, HasSubstr("tumble bench: interrupted by SIGINT; nothing written to '" +
                                     path("out") + "'\n"));
   EXPECT_EQ(directory_entries(dir_), std::vector<std::string>{"scene.json"});
+}
+
+TEST_F(SafeIo, InterruptedInspectLeavesNothingAndExitsWith130) {
+  // A list naming one box 20,000 times: seconds of inspection, with -o's temporary opened
+  // before the first file is read. Before, the signal killed the process and left it behind.
+  testing::write_box_binary_stl(dir_ / "box.stl", testing::BoxMesh({1, 2, 3}));
+  {
+    std::ofstream list(dir_ / "boxes.txt");
+    for (int i = 0; i < 20000; ++i) list << "box.stl\n";
+  }
+  for (const std::string signal : {"INT", "TERM"}) {
+    const auto result = interrupt(
+        tumble_executable() + " inspect --jsonl @" + path("boxes.txt") + " -o " + path("x.jsonl"),
+        "x\\.jsonl", signal);
+    EXPECT_EQ(result.status, kExitInterrupted) << result.err;
+    EXPECT_EQ(result.err, "tumble inspect: interrupted by SIG" + signal + "; nothing written to '" +
+                              path("x.jsonl") + "'\n");
+    EXPECT_EQ(result.out, "");
+    EXPECT_EQ(directory_entries(dir_), (std::vector<std::string>{"box.stl", "boxes.txt"}));
+  }
 }
 
 TEST_F(SafeIo, BenchStopsWithinALongCase) {
